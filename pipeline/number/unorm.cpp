@@ -1,0 +1,35 @@
+#include "pipeline/number/unorm.h"
+
+#include <cassert>
+#include <cmath>
+
+namespace ffsim {
+
+__extension__ typedef unsigned __int128 u128;  // GCC/Clang on every 64-bit target
+
+std::uint32_t unorm_from_double(double x, int bits) {
+  assert(bits >= kMinUnormBits && bits <= kMaxUnormBits);
+  const std::uint32_t m = unorm_max(bits);
+  if (std::isnan(x) || x <= 0.0) return 0;  // NaN -> 0 by choice (docs/numerics.md §1.3)
+  if (x >= 1.0) return m;                   // clamp to [0,1] (§2.13.9)
+  // x = mant * 2^-s exactly, mant < 2^53. Then x*m = mant*m / 2^s is an exact
+  // rational and floor(x*m + 1/2) = (mant*m + 2^(s-1)) >> s in 128-bit integers.
+  int e = 0;
+  const double f = std::frexp(x, &e);  // x = f * 2^e, f in [0.5, 1)
+  const auto mant = static_cast<std::uint64_t>(std::ldexp(f, 53));
+  const int s = 53 - e;  // >= 54 because x < 1 => e <= 0
+  if (s >= 120) return 0;  // x*m < 2^(53+16-120): far below 1/2
+  const u128 p = static_cast<u128>(mant) * m + (static_cast<u128>(1) << (s - 1));
+  return static_cast<std::uint32_t>(p >> s);
+}
+
+std::uint32_t unorm_convert(std::uint32_t k, int from_bits, int to_bits) {
+  assert(from_bits >= kMinUnormBits && from_bits <= kMaxUnormBits);
+  assert(to_bits >= kMinUnormBits && to_bits <= kMaxUnormBits);
+  const std::uint32_t mf = unorm_max(from_bits);
+  if (k > mf) k = mf;
+  if (from_bits == to_bits) return k;
+  return static_cast<std::uint32_t>(div_round_half_up(std::uint64_t{k} * unorm_max(to_bits), mf));
+}
+
+}  // namespace ffsim

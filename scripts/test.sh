@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Builds ffsim twice and runs the whole test suite through CTest in each build:
+#   build/       Release (-O3), the configuration users run
+#   build-asan/  Release + AddressSanitizer + UndefinedBehaviorSanitizer
+# Any failure in either build fails the script.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+jobs=${FFSIM_JOBS:-$(nproc)}
+for cfg in "build -DFFSIM_SANITIZE=OFF" "build-asan -DFFSIM_SANITIZE=ON"; do
+  set -- $cfg
+  dir=$1; shift
+  echo "== $dir: configure, build, test"
+  cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
+  cmake --build "$dir" -j "$jobs"
+  ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+    ctest --test-dir "$dir" --output-on-failure -j "$jobs"
+done

@@ -1,0 +1,94 @@
+#include "sim/cli/cli.h"
+
+#include <ostream>
+
+namespace ffsim::cli {
+
+namespace {
+
+// Subcommands whose implementation lands with a later issue. They exist so the
+// command structure is stable; calling one says which issue provides it.
+Subcommand planned(std::string name, std::string summary, std::string issue) {
+  Subcommand s;
+  s.name = name;
+  s.summary = summary + " [" + issue + "]";
+  s.usage = "usage: ffsim " + name + " ...\n\n" + summary + ".\nProvided by " + issue +
+            "; this build does not include it yet.\n";
+  s.run = [name, issue](const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+    if (wants_help(args)) {
+      out << "ffsim " << name << ": provided by " << issue << "; not in this build yet\n";
+      return 0;
+    }
+    err << "ffsim " << name << ": not in this build yet (" << issue << ")\n";
+    return 2;
+  };
+  return s;
+}
+
+}  // namespace
+
+const std::vector<Subcommand>& subcommands() {
+  static const std::vector<Subcommand> all = {
+      planned("replay", "replay a command trace and write its dumps", "issue #6"),
+      planned("diff", "compare two images or dump sets", "issue #6"),
+      planned("compare", "replay two traces (or one under two profiles) and diff them", "issue #6"),
+      planned("info", "show a trace's parameters, resources and passes", "issue #6"),
+      planned("bench", "run time against error, and per-stage throughput", "issues #9, #10"),
+      planned("bumpshadow", "precompute ellipse shadow maps and horizon maps", "issue #7"),
+      profiles_command(),
+      demo_command(),
+  };
+  return all;
+}
+
+bool wants_help(const std::vector<std::string>& args) {
+  for (const auto& a : args)
+    if (a == "--help" || a == "-h") return true;
+  return false;
+}
+
+int usage_error(std::ostream& err, const std::string& subcommand, const std::string& message) {
+  err << "ffsim" << (subcommand.empty() ? "" : " " + subcommand) << ": " << message
+      << " (see `ffsim " << (subcommand.empty() ? "" : subcommand + " ") << "--help`)\n";
+  return 2;
+}
+
+static void print_help(std::ostream& out) {
+  out << "ffsim " FFSIM_VERSION " - a bit-exact simulator of the fixed-function GL pipeline of about 2000\n\n"
+         "usage: ffsim [--help] [--version] COMMAND [ARGS...]\n\ncommands:\n";
+  for (const auto& s : subcommands()) {
+    out << "  " << s.name;
+    for (std::size_t i = s.name.size(); i < 12; ++i) out << ' ';
+    out << s.summary << "\n";
+  }
+  out << "\n`ffsim COMMAND --help` describes a command. Exit codes: 0 success, 1 failure, 2 usage error.\n";
+}
+
+int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  if (args.empty()) {
+    print_help(err);
+    return 2;
+  }
+  const std::string& first = args[0];
+  if (first == "--help" || first == "-h" || first == "help") {
+    print_help(out);
+    return 0;
+  }
+  if (first == "--version" || first == "-V") {
+    out << "ffsim " FFSIM_VERSION "\n";
+    return 0;
+  }
+  if (!first.empty() && first[0] == '-') return usage_error(err, "", "unknown option `" + first + "`");
+  for (const auto& s : subcommands()) {
+    if (s.name != first) continue;
+    const std::vector<std::string> rest(args.begin() + 1, args.end());
+    if (wants_help(rest) && !s.usage.empty()) {
+      out << s.usage;
+      return 0;
+    }
+    return s.run(rest, out, err);
+  }
+  return usage_error(err, "", "unknown command `" + first + "`");
+}
+
+}  // namespace ffsim::cli

@@ -1,0 +1,105 @@
+// The simulated GL context: all GL state, the framebuffer, and the GL entry
+// points, named after the GL calls (ctx.blendEquation(gl::FUNC_SUBTRACT)).
+//
+// One file per area implements the entry points (sim/context_*.cpp); the state
+// each area owns is a plain struct from pipeline/ so that stages are functions of
+// (state, input span) and can be tested without a Context.
+//
+// GL semantics kept throughout: a call that raises an error has no other effect
+// (§2.5); errors are recorded once (getError returns and clears the first) and
+// each one is also reported through the error callback with the call site, like a
+// debug context.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "pipeline/gl/enums.h"
+#include "pipeline/number/profile.h"
+#include "sim/framebuffer.h"
+#include "sim/gl_error.h"
+
+namespace ffsim {
+
+using GLbitfield = std::uint32_t;
+
+// Write masks and scissor (GL 1.2.1 §4.1.2, §4.2.2); used by glClear and by every
+// fragment write.
+struct WriteMaskState {
+  std::array<bool, 4> color{true, true, true, true};  // glColorMask
+  std::uint32_t stencil = 0xFFFFFFFFu;                // glStencilMask (low s bits used)
+  bool depth = true;                                  // glDepthMask
+};
+struct ScissorState {
+  bool enabled = false;
+  Rect box{0, 0, 0, 0};  // initial: the window size (set by the Context constructor)
+};
+struct ClearState {
+  std::array<double, 4> color{0, 0, 0, 0};  // clamped to [0,1] when set (§4.2.3)
+  std::uint32_t stencil = 0;
+  double depth = 1.0;  // clamped to [0,1] when set
+};
+
+class Context {
+ public:
+  // Throws FramebufferError for an impossible framebuffer size.
+  Context(const Profile& profile, int width, int height);
+  ~Context();
+  Context(const Context&) = delete;
+  Context& operator=(const Context&) = delete;
+
+  const Profile& profile() const { return profile_; }
+  Framebuffer& framebuffer() { return fb_; }
+  const Framebuffer& framebuffer() const { return fb_; }
+
+  // ---- errors -------------------------------------------------------------
+  GLenum getError();  // returns and clears the recorded error (GL_NO_ERROR if none)
+  void set_call_site(SourceLoc where) { call_site_ = std::move(where); }
+  const SourceLoc& call_site() const { return call_site_; }
+  void set_error_callback(std::function<void(const GLErrorEvent&)> cb) { on_error_ = std::move(cb); }
+  const std::vector<GLErrorEvent>& error_log() const { return error_log_; }
+  // Record an error raised by `function`; returns false so callers can write
+  // `return ctx.error(...)`-style early exits in bool helpers.
+  bool error(GLenum code, const char* function, std::string message);
+
+  // ---- capabilities (sim/context.cpp dispatches to the owning area) --------
+  void enable(GLenum cap);
+  void disable(GLenum cap);
+  bool isEnabled(GLenum cap);
+
+  // ---- framebuffer control (sim/context_clear.cpp) -------------------------
+  void clearColor(double r, double g, double b, double a);
+  void clearStencil(std::int64_t s);
+  void clearDepth(double d);
+  void colorMask(bool r, bool g, bool b, bool a);
+  void stencilMask(std::uint32_t mask);
+  void depthMask(bool flag);
+  void scissor(int x, int y, int width, int height);
+  void clear(GLbitfield mask);
+
+  const WriteMaskState& write_masks() const { return masks_; }
+  const ScissorState& scissor_state() const { return scissor_; }
+  const ClearState& clear_state() const { return clear_; }
+  // The rectangle writes may touch: the window, intersected with the scissor box
+  // when the scissor test is enabled.
+  Rect write_rect() const;
+
+ private:
+  bool set_capability(GLenum cap, bool on, const char* function);
+
+  Profile profile_;
+  Framebuffer fb_;
+  GLenum pending_error_ = gl::NO_ERROR;
+  SourceLoc call_site_;
+  std::function<void(const GLErrorEvent&)> on_error_;
+  std::vector<GLErrorEvent> error_log_;
+
+  WriteMaskState masks_;
+  ScissorState scissor_;
+  ClearState clear_;
+};
+
+}  // namespace ffsim

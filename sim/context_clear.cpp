@@ -1,0 +1,51 @@
+// glClear and the state it reads: clear values, write masks, scissor box
+// (GL 1.2.1 §4.2.2 "Fine Control of Buffer Updates", §4.2.3 "Clearing the Buffers").
+#include <algorithm>
+
+#include "sim/context.h"
+
+namespace ffsim {
+
+namespace {
+double clamp01(double v) { return std::clamp(v, 0.0, 1.0); }
+}  // namespace
+
+void Context::clearColor(double r, double g, double b, double a) {
+  clear_.color = {clamp01(r), clamp01(g), clamp01(b), clamp01(a)};  // §4.2.3: clamped when specified
+}
+
+void Context::clearStencil(std::int64_t s) {
+  // §4.2.3: masked to the number of stencil bits when used; keep the low 32 bits.
+  clear_.stencil = static_cast<std::uint32_t>(s);
+}
+
+void Context::clearDepth(double d) { clear_.depth = clamp01(d); }
+
+void Context::colorMask(bool r, bool g, bool b, bool a) { masks_.color = {r, g, b, a}; }
+void Context::stencilMask(std::uint32_t mask) { masks_.stencil = mask; }
+void Context::depthMask(bool flag) { masks_.depth = flag; }
+
+void Context::scissor(int x, int y, int width, int height) {
+  if (width < 0 || height < 0) {
+    error(gl::INVALID_VALUE, "glScissor", "width and height must not be negative (got " +
+                                              std::to_string(width) + ", " + std::to_string(height) + ")");
+    return;
+  }
+  scissor_.box = {x, y, width, height};
+}
+
+void Context::clear(GLbitfield mask) {
+  constexpr GLbitfield known = gl::COLOR_BUFFER_BIT | gl::DEPTH_BUFFER_BIT | gl::STENCIL_BUFFER_BIT |
+                               gl::ACCUM_BUFFER_BIT;
+  if (mask & ~known) {
+    error(gl::INVALID_VALUE, "glClear", "mask has bits other than the buffer bits");
+    return;
+  }
+  const Rect r = write_rect();  // §4.2.3: clear honours pixel ownership, scissor and masks
+  if (mask & gl::COLOR_BUFFER_BIT) fb_.clear_color(r, clear_.color, masks_.color);
+  if (mask & gl::STENCIL_BUFFER_BIT) fb_.clear_stencil(r, clear_.stencil, masks_.stencil);
+  if ((mask & gl::DEPTH_BUFFER_BIT) && masks_.depth) fb_.clear_depth(r, clear_.depth);
+  // ACCUM_BUFFER_BIT: this context has no accumulation buffer, so nothing to clear.
+}
+
+}  // namespace ffsim

@@ -1,0 +1,92 @@
+#include "sim/framebuffer.h"
+
+#include <algorithm>
+
+#include "pipeline/number/unorm.h"
+
+namespace ffsim {
+
+FramebufferFormat FramebufferFormat::from_profile(const Profile& p, int width, int height) {
+  FramebufferFormat f;
+  f.width = width;
+  f.height = height;
+  f.color_bits = p.color_bits;
+  f.color_arith = p.arithmetic;
+  f.stencil_bits = p.stencil_bits;
+  f.depth_bits = p.depth_bits;
+  return f;
+}
+
+Framebuffer::Framebuffer(const FramebufferFormat& format) : fmt_(format) {
+  const auto fail = [&](const std::string& why) { throw FramebufferError("framebuffer " +
+      std::to_string(fmt_.width) + "x" + std::to_string(fmt_.height) + ": " + why); };
+  if (fmt_.width < 1 || fmt_.height < 1 || fmt_.width > kMaxFramebufferSide || fmt_.height > kMaxFramebufferSide)
+    fail("each side must be 1.." + std::to_string(kMaxFramebufferSide));
+  if (static_cast<long long>(fmt_.width) * fmt_.height > kMaxFramebufferPixels)
+    fail("more than " + std::to_string(kMaxFramebufferPixels) + " pixels");
+  if (fmt_.color_bits < kMinUnormBits || fmt_.color_bits > kMaxUnormBits) fail("color_bits must be 1..16");
+  if (fmt_.stencil_bits < 0 || fmt_.stencil_bits > 8) fail("stencil_bits must be 0..8");
+  if (fmt_.depth_bits != 0 && fmt_.depth_bits != 16 && fmt_.depth_bits != 24) fail("depth_bits must be 0, 16 or 24");
+  const std::size_t n = static_cast<std::size_t>(fmt_.width) * fmt_.height;
+  if (fmt_.float_color()) values_.assign(4 * n, 0.0);
+  else codes_.assign(4 * n, 0);
+  if (fmt_.stencil_bits > 0) stencil_.assign(n, 0);
+  if (fmt_.depth_bits > 0) depth_.assign(n, 0);
+}
+
+std::uint32_t Framebuffer::color_max() const { return unorm_max(fmt_.color_bits); }
+std::uint32_t Framebuffer::stencil_max() const { return fmt_.stencil_bits ? unorm_max(fmt_.stencil_bits) : 0; }
+std::uint32_t Framebuffer::depth_max() const { return fmt_.depth_bits ? unorm_max(fmt_.depth_bits) : 0; }
+
+double Framebuffer::color_value(int x, int y, int c) const {
+  const std::size_t i = 4 * index(x, y) + c;
+  return fmt_.float_color() ? values_[i] : unorm_to_double(codes_[i], fmt_.color_bits);
+}
+
+std::array<double, 4> Framebuffer::color(int x, int y) const {
+  return {color_value(x, y, 0), color_value(x, y, 1), color_value(x, y, 2), color_value(x, y, 3)};
+}
+
+void Framebuffer::store_color_value(int x, int y, int c, double v) {
+  const std::size_t i = 4 * index(x, y) + c;
+  switch (fmt_.color_arith) {
+    case Arithmetic::Fixed: codes_[i] = static_cast<std::uint16_t>(unorm_from_double(v, fmt_.color_bits)); break;
+    case Arithmetic::Float32: values_[i] = static_cast<float>(std::clamp(v, 0.0, 1.0)); break;
+    case Arithmetic::Float64: values_[i] = std::clamp(v, 0.0, 1.0); break;
+  }
+}
+
+Rect intersect(const Rect& a, const Rect& b) {
+  const int x0 = std::max(a.x, b.x), y0 = std::max(a.y, b.y);
+  const int x1 = std::min(a.x + a.width, b.x + b.width), y1 = std::min(a.y + a.height, b.y + b.height);
+  return {x0, y0, std::max(0, x1 - x0), std::max(0, y1 - y0)};
+}
+
+void Framebuffer::clear_color(const Rect& r0, const std::array<double, 4>& rgba, const std::array<bool, 4>& mask) {
+  const Rect r = intersect(r0, bounds());
+  for (int y = r.y; y < r.y + r.height; ++y)
+    for (int x = r.x; x < r.x + r.width; ++x)
+      for (int c = 0; c < 4; ++c)
+        if (mask[c]) store_color_value(x, y, c, rgba[c]);
+}
+
+void Framebuffer::clear_stencil(const Rect& r0, std::uint32_t value, std::uint32_t writemask) {
+  if (!has_stencil()) return;
+  const Rect r = intersect(r0, bounds());
+  const std::uint32_t m = writemask & stencil_max();
+  for (int y = r.y; y < r.y + r.height; ++y)
+    for (int x = r.x; x < r.x + r.width; ++x) {
+      std::uint8_t& s = stencil_[index(x, y)];
+      s = static_cast<std::uint8_t>((s & ~m) | (value & m));  // §4.2.2: writes through StencilMask
+    }
+}
+
+void Framebuffer::clear_depth(const Rect& r0, double depth01) {
+  if (!has_depth()) return;
+  const Rect r = intersect(r0, bounds());
+  const std::uint32_t code = unorm_from_double(std::clamp(depth01, 0.0, 1.0), fmt_.depth_bits);
+  for (int y = r.y; y < r.y + r.height; ++y)
+    for (int x = r.x; x < r.x + r.width; ++x) depth_[index(x, y)] = code;
+}
+
+}  // namespace ffsim

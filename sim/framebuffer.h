@@ -1,0 +1,94 @@
+// The framebuffer: RGBA color at the profile's width, a stencil buffer and an
+// optional depth buffer. Rows are stored bottom to top (row 0 is window y = 0,
+// as in GL window coordinates); image files are flipped on write/read.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "pipeline/number/profile.h"
+
+namespace ffsim {
+
+inline constexpr int kMaxFramebufferSide = 16384;
+inline constexpr long long kMaxFramebufferPixels = 1LL << 26;  // 64 Mpixel
+
+struct FramebufferFormat {
+  int width = 256;
+  int height = 256;
+  int color_bits = 8;                       // Fixed profiles: code width per channel (1..16)
+  Arithmetic color_arith = Arithmetic::Fixed;  // Float32/Float64: color held as binary64 values
+  int stencil_bits = 8;                     // 0 = no stencil buffer
+  int depth_bits = 24;                      // 0 = no depth buffer; else 16 or 24
+
+  static FramebufferFormat from_profile(const Profile& p, int width, int height);
+  bool float_color() const { return color_arith != Arithmetic::Fixed; }
+};
+
+struct FramebufferError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct Rect {
+  int x = 0, y = 0, width = 0, height = 0;  // window coordinates, bottom-left origin
+};
+
+class Framebuffer {
+ public:
+  // Validates the format (sizes 1..16384 per side, at most 2^26 pixels; bit widths
+  // in range) and throws FramebufferError with the reason otherwise. Contents start
+  // as zero (color 0, stencil 0, depth 0).
+  explicit Framebuffer(const FramebufferFormat& format);
+
+  const FramebufferFormat& format() const { return fmt_; }
+  int width() const { return fmt_.width; }
+  int height() const { return fmt_.height; }
+  bool has_stencil() const { return fmt_.stencil_bits > 0; }
+  bool has_depth() const { return fmt_.depth_bits > 0; }
+  std::uint32_t color_max() const;    // 2^color_bits - 1 (fixed color)
+  std::uint32_t stencil_max() const;  // 2^stencil_bits - 1
+  std::uint32_t depth_max() const;    // 2^depth_bits - 1
+
+  // Raw storage: 4 values (R, G, B, A) per pixel, row-major from the bottom row.
+  // Fixed color uses codes(); float color uses values().
+  std::vector<std::uint16_t>& codes() { return codes_; }
+  const std::vector<std::uint16_t>& codes() const { return codes_; }
+  std::vector<double>& values() { return values_; }
+  const std::vector<double>& values() const { return values_; }
+  std::vector<std::uint8_t>& stencil() { return stencil_; }
+  const std::vector<std::uint8_t>& stencil() const { return stencil_; }
+  std::vector<std::uint32_t>& depth() { return depth_; }
+  const std::vector<std::uint32_t>& depth() const { return depth_; }
+
+  std::size_t index(int x, int y) const { return static_cast<std::size_t>(y) * fmt_.width + x; }
+
+  // Real value of channel c (0..3) at (x, y): code / (2^bits - 1) or the stored float.
+  double color_value(int x, int y, int c) const;
+  std::array<double, 4> color(int x, int y) const;
+  // Store a real value: clamp to [0,1] and round (unorm_from_double) for fixed
+  // color; round to binary32 for Float32; as is for Float64 (still clamped to [0,1]).
+  void store_color_value(int x, int y, int c, double v);
+
+  // glClear semantics (GL 1.2.1 §4.2.3): the rectangle is already intersected with
+  // the scissor box by the caller; per-channel color mask; stencil write mask.
+  // `rgba` is the clamped clear color; stored with store_color_value's rule.
+  void clear_color(const Rect& r, const std::array<double, 4>& rgba, const std::array<bool, 4>& mask);
+  void clear_stencil(const Rect& r, std::uint32_t value, std::uint32_t writemask);
+  void clear_depth(const Rect& r, double depth01);
+
+  Rect bounds() const { return {0, 0, fmt_.width, fmt_.height}; }
+
+ private:
+  FramebufferFormat fmt_;
+  std::vector<std::uint16_t> codes_;
+  std::vector<double> values_;
+  std::vector<std::uint8_t> stencil_;
+  std::vector<std::uint32_t> depth_;
+};
+
+// Intersection of two rectangles (empty rectangles have width or height 0).
+Rect intersect(const Rect& a, const Rect& b);
+
+}  // namespace ffsim

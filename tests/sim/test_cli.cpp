@@ -1,0 +1,53 @@
+#include <doctest/doctest.h>
+
+#include <sstream>
+
+#include "sim/cli/cli.h"
+
+using namespace ffsim;
+
+namespace {
+struct Run {
+  int code;
+  std::string out, err;
+};
+Run run(std::vector<std::string> args) {
+  std::ostringstream out, err;
+  const int code = cli::run(args, out, err);
+  return {code, out.str(), err.str()};
+}
+}  // namespace
+
+TEST_CASE("cli: --version and --help") {
+  const Run v = run({"--version"});
+  CHECK(v.code == 0);
+  CHECK(v.out == "ffsim " FFSIM_VERSION "\n");
+  const Run h = run({"--help"});
+  CHECK(h.code == 0);
+  for (const char* sub : {"replay", "diff", "bench", "bumpshadow", "profiles", "demo"})
+    CHECK(h.out.find(std::string("  ") + sub) != std::string::npos);
+}
+
+TEST_CASE("cli: unknown flags and subcommands are one-line errors with exit code 2") {
+  const Run a = run({"--frobnicate"});
+  CHECK(a.code == 2);
+  CHECK(a.err == "ffsim: unknown option `--frobnicate` (see `ffsim --help`)\n");
+  const Run b = run({"frobnicate"});
+  CHECK(b.code == 2);
+  CHECK(b.err == "ffsim: unknown command `frobnicate` (see `ffsim --help`)\n");
+  const Run c = run({"demo", "--bogus"});
+  CHECK(c.code == 2);
+  CHECK(c.err == "ffsim demo: unknown argument `--bogus` (see `ffsim demo --help`)\n");
+  const Run d = run({});
+  CHECK(d.code == 2);
+}
+
+TEST_CASE("cli: profiles lists and prints profiles; a bad name is a failure") {
+  const Run l = run({"profiles"});
+  CHECK(l.code == 0);
+  CHECK(l.out.find("geforce256\t") == 0);
+  const Run p = run({"profiles", "geforce256"});
+  CHECK(p.out.find("combiner_bits = 9\n") != std::string::npos);
+  const Run bad = run({"profiles", "/no/such/profile"});
+  CHECK(bad.code == 1);
+}
