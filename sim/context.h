@@ -17,8 +17,12 @@
 #include <string>
 #include <vector>
 
+#include <map>
+
+#include "pipeline/fragment/fragment_span.h"
 #include "pipeline/gl/enums.h"
 #include "pipeline/number/profile.h"
+#include "pipeline/texture/texture_object.h"
 #include "sim/framebuffer.h"
 #include "sim/gl_error.h"
 
@@ -42,6 +46,26 @@ struct ClearState {
   std::uint32_t stencil = 0;
   double depth = 1.0;  // clamped to [0,1] when set
 };
+
+// Current raster position (GL121 §2.12), set by glRasterPos*; read by
+// DrawPixels/CopyPixels/Bitmap. Window coordinates.
+struct RasterPosState {
+  bool valid = true;
+  double x = 0, y = 0, z = 0;  // window x, y and depth in [0,1]
+  double w = 1;                // clip w (for texcoord division)
+  std::array<double, 4> color{1, 1, 1, 1};
+  std::array<double, 4> secondary_color{0, 0, 0, 1};
+  std::array<std::array<double, 4>, 4> texcoord{{{0, 0, 0, 1}, {0, 0, 0, 1}, {0, 0, 0, 1}, {0, 0, 0, 1}}};
+};
+
+// Per texture unit binding and enables (GL121 §3.8.8, ARB_multitexture). Texture
+// environment state is added by the texturing code.
+struct TextureUnitBinding {
+  std::uint32_t bound_1d = 0, bound_2d = 0;  // texture object names; 0 = default texture
+  bool enabled_1d = false, enabled_2d = false;
+};
+
+inline constexpr int kMaxTextureUnits = 4;
 
 class Context {
  public:
@@ -80,6 +104,28 @@ class Context {
   void scissor(int x, int y, int width, int height);
   void clear(GLbitfield mask);
 
+  // ---- texture objects and units (storage; binding calls live with texturing) --
+  int active_texture_unit() const { return active_unit_; }
+  TextureUnitBinding& texture_unit(int unit) { return units_[unit]; }
+  const TextureUnitBinding& texture_unit(int unit) const { return units_[unit]; }
+  // The texture object bound to `target` (TEXTURE_1D/2D) on `unit`; name 0 is the
+  // default texture of that target (shared by all units, GL121 §3.8.12).
+  TextureObject& bound_texture(int unit, GLenum target);
+  // Named texture objects (created on first bind).
+  std::map<std::uint32_t, TextureObject>& texture_objects() { return textures_; }
+
+  // ---- raster position (set by glRasterPos*, read by the pixel rectangle calls) --
+  RasterPosState& raster_pos() { return raster_pos_; }
+  const RasterPosState& raster_pos() const { return raster_pos_; }
+
+  // ---- fragment sink for pixel rectangles (DrawPixels / CopyPixels) ----------
+  // Fragments produced by the pixel path after final conversion (colour already
+  // clamped and converted to the fragment format, GL121 §3.6.4). The per-fragment
+  // operations own this: texturing with the raster position's texture coordinates
+  // when enabled, then scissor, alpha, stencil, depth, blend, masks
+  // (GL121 §3.6.4 "Conversion to Fragments", §4.1).
+  void pixel_fragments(FragmentSpan& span);
+
   const WriteMaskState& write_masks() const { return masks_; }
   const ScissorState& scissor_state() const { return scissor_; }
   const ClearState& clear_state() const { return clear_; }
@@ -96,6 +142,12 @@ class Context {
   SourceLoc call_site_;
   std::function<void(const GLErrorEvent&)> on_error_;
   std::vector<GLErrorEvent> error_log_;
+
+  int active_unit_ = 0;
+  std::array<TextureUnitBinding, kMaxTextureUnits> units_{};
+  std::map<std::uint32_t, TextureObject> textures_;
+  TextureObject default_1d_, default_2d_;
+  RasterPosState raster_pos_;
 
   WriteMaskState masks_;
   ScissorState scissor_;
