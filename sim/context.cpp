@@ -45,6 +45,18 @@ bool Context::error(GLenum code, const char* function, std::string message) {
 bool Context::set_capability(GLenum cap, bool on, const char* function) {
   switch (cap) {
     case gl::SCISSOR_TEST: scissor_.enabled = on; return true;
+    // ==== [issue 3] capabilities ====
+
+
+    // ==== [issue 4a] capabilities ====
+
+
+    // ==== [issue 4b] capabilities ====
+
+
+    // ==== [issue 5] capabilities ====
+
+
     default:
       return error(gl::INVALID_ENUM, function, gl::enum_name(cap) + " is not a capability this context knows");
   }
@@ -56,6 +68,18 @@ void Context::disable(GLenum cap) { set_capability(cap, false, "glDisable"); }
 bool Context::isEnabled(GLenum cap) {
   switch (cap) {
     case gl::SCISSOR_TEST: return scissor_.enabled;
+    // ==== [issue 3] capabilities ====
+
+
+    // ==== [issue 4a] capabilities ====
+
+
+    // ==== [issue 4b] capabilities ====
+
+
+    // ==== [issue 5] capabilities ====
+
+
     default:
       error(gl::INVALID_ENUM, "glIsEnabled", gl::enum_name(cap) + " is not a capability this context knows");
       return false;

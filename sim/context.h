@@ -20,6 +20,7 @@
 #include <map>
 
 #include "pipeline/fragment/fragment_span.h"
+#include "pipeline/geometry/matrix_stack.h"
 #include "pipeline/gl/enums.h"
 #include "pipeline/number/profile.h"
 #include "pipeline/texture/texture_object.h"
@@ -125,6 +126,29 @@ class Context {
   // when enabled, then scissor, alpha, stencil, depth, blend, masks
   // (GL121 §3.6.4 "Conversion to Fragments", §4.1).
   void pixel_fragments(FragmentSpan& span);
+  // Shaded fragments (colour final, depth set) into the per-fragment operations
+  // (GL121 §4.1: scissor, alpha test, stencil test, depth test, blending,
+  // dithering, masks) and the framebuffer. Called by the rasterizer and by
+  // pixel_fragments.
+  void write_fragments(FragmentSpan& span);
+
+  // ---- matrices (sim/context_matrix.cpp, GL121 §2.10.2) ---------------------
+  void matrixMode(GLenum mode);  // MODELVIEW, PROJECTION, TEXTURE, COLOR
+  void loadIdentity();
+  void loadMatrix(const double m[16]);  // column-major, as glLoadMatrixd
+  void multMatrix(const double m[16]);
+  void pushMatrix();
+  void popMatrix();
+  void translate(double x, double y, double z);
+  void scale(double x, double y, double z);
+  void rotate(double angle_degrees, double x, double y, double z);
+  void ortho(double l, double r, double b, double t, double n, double f);
+  void frustum(double l, double r, double b, double t, double n, double f);
+  GLenum matrix_mode() const { return matrix_mode_; }
+  const MatrixStack& modelview() const { return modelview_; }
+  const MatrixStack& projection() const { return projection_; }
+  const MatrixStack& texture_matrix(int unit) const { return texture_matrix_[unit]; }
+  const MatrixStack& color_matrix() const { return color_matrix_; }
 
   const WriteMaskState& write_masks() const { return masks_; }
   const ScissorState& scissor_state() const { return scissor_; }
@@ -133,8 +157,27 @@ class Context {
   // when the scissor test is enabled.
   Rect write_rect() const;
 
+  // Each area adds its entry points and accessors below its own marker, so that
+  // work on different areas merges without conflicts.
+
+  // ==== [issue 3] pixel transfer and pixel rectangles: entry points ====
+
+
+  // ==== [issue 4a] geometry, rasterization, texturing, texture environment ====
+
+
+  // ==== [issue 4b] per-fragment operations ====
+
+
+  // ==== [issue 5] register combiners ====
+
+
+  // ==== [issue 6] traces: hooks ====
+
+
  private:
   bool set_capability(GLenum cap, bool on, const char* function);
+  MatrixStack& current_stack();
 
   Profile profile_;
   Framebuffer fb_;
@@ -152,6 +195,30 @@ class Context {
   WriteMaskState masks_;
   ScissorState scissor_;
   ClearState clear_;
+
+  GLenum matrix_mode_ = gl::MODELVIEW;
+  MatrixStack modelview_{kModelviewStackDepth};
+  MatrixStack projection_{kProjectionStackDepth};
+  std::array<MatrixStack, kMaxTextureUnits> texture_matrix_{MatrixStack{kTextureStackDepth}, MatrixStack{kTextureStackDepth},
+                                                            MatrixStack{kTextureStackDepth}, MatrixStack{kTextureStackDepth}};
+  MatrixStack color_matrix_{kColorStackDepth};
+
+  // Area state, below per-area markers (see the public section).
+
+  // ==== [issue 3] state ====
+
+
+  // ==== [issue 4a] state ====
+
+
+  // ==== [issue 4b] state ====
+
+
+  // ==== [issue 5] state ====
+
+
+  // ==== [issue 6] state ====
+
 };
 
 }  // namespace ffsim

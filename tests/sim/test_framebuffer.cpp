@@ -92,3 +92,20 @@ TEST_CASE("context: GL errors are latched once, logged with the call site, state
   ctx.clear(0x1);
   CHECK(ctx.getError() == gl::INVALID_VALUE);
 }
+
+TEST_CASE("context: matrix modes and stack errors") {
+  Context ctx(*find_builtin_profile("geforce256"), 4, 4);
+  ctx.matrixMode(gl::COLOR);
+  ctx.scale(0.5, 0.5, 0.5);
+  CHECK(ctx.color_matrix().top()[0][0] == 0.5);
+  CHECK(ctx.modelview().top() == glm::dmat4(1.0));
+  ctx.pushMatrix();
+  ctx.pushMatrix();  // COLOR stack depth 2
+  CHECK(ctx.getError() == gl::STACK_OVERFLOW);
+  ctx.popMatrix();
+  ctx.popMatrix();
+  CHECK(ctx.getError() == gl::STACK_UNDERFLOW);
+  ctx.matrixMode(0x1234);
+  CHECK(ctx.getError() == gl::INVALID_ENUM);
+  CHECK(ctx.matrix_mode() == gl::COLOR);
+}
