@@ -13,7 +13,7 @@ TEST_CASE("matrix: rotate 90 degrees about z maps x to y") {
   CHECK(rotate_matrix(30, 0, 0, 0) == glm::dmat4(1.0));
 }
 
-TEST_CASE("matrix: ortho maps the box corners to the NDC cube; frustum maps near to -1") {
+TEST_CASE("matrix: ortho maps the box corners to the NDC cube, frustum maps near to -1") {
   const glm::dmat4 o = ortho_matrix(0, 4, 0, 2, -1, 1);
   const glm::dvec4 a = o * glm::dvec4(4, 2, 1, 1);
   CHECK(a.x == 1.0);

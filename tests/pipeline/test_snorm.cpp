@@ -11,7 +11,7 @@
 
 using namespace ffsim;
 
-TEST_CASE("snorm9 (geforce256): M = 255, -1, 0, +1 exact; round trip for all 511 codes") {
+TEST_CASE("snorm9 (geforce256): M = 255, -1, 0, +1 exact, round trip for all 511 codes") {
   CHECK(snorm_max(9) == 255);
   for (int c = -255; c <= 255; ++c) CHECK(snorm_from_double(snorm_to_double(c, 9), 9) == c);
   CHECK(snorm_from_double(-1.0, 9) == -255);

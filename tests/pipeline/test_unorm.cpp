@@ -25,7 +25,7 @@ TEST_CASE("unorm: round trip for every code of every width 1..16") {
     for (std::uint32_t k = 0; k <= unorm_max(bits); ++k) REQUIRE(unorm_from_double(unorm_to_double(k, bits), bits) == k);
 }
 
-TEST_CASE("unorm8: every tie (k + 1/2)/255 rounds up; its neighbours round to nearest") {
+TEST_CASE("unorm8: every tie (k + 1/2)/255 rounds up, its neighbours round to nearest") {
   // The 255 tie points between codes k and k+1 are x = (2k+1)/510, which no
   // binary64 value equals exactly; so check the double nearest each tie and its
   // two neighbours against the exact rule (sign of 510x - (2k+1), computed with an

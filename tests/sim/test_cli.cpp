@@ -42,7 +42,7 @@ TEST_CASE("cli: unknown flags and subcommands are one-line errors with exit code
   CHECK(d.code == 2);
 }
 
-TEST_CASE("cli: profiles lists and prints profiles; a bad name is a failure") {
+TEST_CASE("cli: profiles lists and prints profiles, a bad name is a failure") {
   const Run l = run({"profiles"});
   CHECK(l.code == 0);
   CHECK(l.out.find("geforce256\t") == 0);

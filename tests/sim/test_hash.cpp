@@ -39,7 +39,7 @@ TEST_CASE("hash: known hashes of the 64x32 test pattern (geforce256 formats)") {
   CHECK(hash_hex(buffer_hash(fb, BufferKind::Depth)) == "1acd08175725e9d0");
 }
 
-TEST_CASE("hash: any single changed value changes the hash; kinds and sizes are distinguished") {
+TEST_CASE("hash: any single changed value changes the hash, kinds and sizes are distinguished") {
   FramebufferFormat f;
   f.width = 16;
   f.height = 16;
