@@ -49,7 +49,9 @@ bool Context::set_capability(GLenum cap, bool on, const char* function) {
 
 
     // ==== [issue 4a] capabilities ====
-
+    case gl::TEXTURE_1D:
+    case gl::TEXTURE_2D: set_texture_enable(cap, on); return true;  // per active unit
+    case gl::COLOR_SUM: color_sum_ = on; return true;
 
     // ==== [issue 4b] capabilities ====
 
@@ -72,7 +74,9 @@ bool Context::isEnabled(GLenum cap) {
 
 
     // ==== [issue 4a] capabilities ====
-
+    case gl::TEXTURE_1D: return units_[active_unit_].enabled_1d;
+    case gl::TEXTURE_2D: return units_[active_unit_].enabled_2d;
+    case gl::COLOR_SUM: return color_sum_;
 
     // ==== [issue 4b] capabilities ====
 

@@ -20,9 +20,11 @@
 #include <map>
 
 #include "pipeline/fragment/fragment_span.h"
+#include "pipeline/geometry/clip.h"
 #include "pipeline/geometry/matrix_stack.h"
 #include "pipeline/gl/enums.h"
 #include "pipeline/number/profile.h"
+#include "pipeline/texenv/shading.h"
 #include "pipeline/texture/texture_object.h"
 #include "sim/framebuffer.h"
 #include "sim/gl_error.h"
@@ -164,6 +166,65 @@ class Context {
 
 
   // ==== [issue 4a] geometry, rasterization, texturing, texture environment ====
+  // Immediate mode (GL121 §2.6, sim/context_geometry.cpp). Primitives are
+  // assembled at glEnd: TRIANGLES, TRIANGLE_STRIP, TRIANGLE_FAN, QUADS,
+  // QUAD_STRIP, POLYGON. Points and lines raise INVALID_ENUM (not modelled).
+  void begin(GLenum mode);
+  void end();
+  void vertex2(double x, double y);
+  void vertex3(double x, double y, double z);
+  void vertex4(double x, double y, double z, double w);
+  void color3(double r, double g, double b);
+  void color4(double r, double g, double b, double a);
+  void secondaryColor3(double r, double g, double b);
+  void texCoord2(double s, double t);
+  void texCoord4(double s, double t, double r, double q);
+  void multiTexCoord2(GLenum texture, double s, double t);
+  void multiTexCoord4(GLenum texture, double s, double t, double r, double q);
+  void normal3(double x, double y, double z);
+  void viewport(int x, int y, int width, int height);
+  void depthRange(double n, double f);
+  void shadeModel(GLenum mode);
+  void rasterPos2(double x, double y);
+  void rasterPos3(double x, double y, double z);
+  void rasterPos4(double x, double y, double z, double w);
+  bool in_begin_end() const { return in_begin_; }
+  const std::array<double, 4>& current_color() const { return current_.color; }
+  const std::array<double, 4>& current_normal() const { return current_.normal; }
+  const std::array<double, 4>& current_texcoord(int unit) const { return current_.texcoord[unit]; }
+
+  // Texture objects, units and environments (sim/context_texture.cpp).
+  void bindTexture(GLenum target, std::uint32_t name);
+  void genTextures(int n, std::uint32_t* names);
+  void deleteTextures(int n, const std::uint32_t* names);
+  void texParameteri(GLenum target, GLenum pname, std::int64_t param);
+  void texParameterf(GLenum target, GLenum pname, double param);
+  void texParameterfv(GLenum target, GLenum pname, const double* params);  // BORDER_COLOR: 4 values
+  void activeTexture(GLenum texture);        // TEXTURE0 + i, i < profile().texture_units
+  void clientActiveTexture(GLenum texture);  // stored (vertex arrays are not modelled)
+  int client_active_texture_unit() const { return client_active_unit_; }
+  void texEnvi(GLenum target, GLenum pname, std::int64_t param);
+  void texEnvf(GLenum target, GLenum pname, double param);
+  void texEnvfv(GLenum target, GLenum pname, const double* params);  // TEXTURE_ENV_COLOR: 4 values
+  const TexEnvState& texenv(int unit) const { return texenv_[unit]; }
+
+  // Shading (sim/draw.cpp). The state resolved for a draw (enabled, complete
+  // textures; environments), its plan, and the plan as text for --explain.
+  ShadingState shading_state();
+  ShadingPlan shading_plan(const ShadingState& st) const;
+  std::string explain_shading();
+  // Run the full path instead of the plan (tests compare the two).
+  void set_full_shading(bool on) { full_shading_ = on; }
+  // Called with explain_shading()'s text before every draw that shades fragments.
+  void set_explain_callback(std::function<void(const std::string&)> cb) { on_explain_ = std::move(cb); }
+  // One fragment through the shading stages: fetch_texels (step 1) then the
+  // colour stage (texture environments + colour sum, step 2). Register
+  // combiners replace step 2 here and consume the same texels and colours.
+  Rgba shade_fragment(const ShadingState& st, const ShadingPlan& plan, const Rgba& primary, const Rgba& secondary,
+                      const UnitTexCoords& tc);
+  GLenum shade_model() const { return shade_model_; }
+  const std::array<int, 4>& viewport_box() const { return viewport_; }
+  std::array<double, 2> depth_range() const { return {depth_near_, depth_far_}; }
 
 
   // ==== [issue 4b] per-fragment operations ====
@@ -209,6 +270,33 @@ class Context {
 
 
   // ==== [issue 4a] state ====
+  struct CurrentAttribs {  // GL121 §2.7 current values
+    std::array<double, 4> color{1, 1, 1, 1};
+    std::array<double, 4> secondary{0, 0, 0, 0};
+    std::array<double, 4> normal{0, 0, 1, 0};
+    std::array<std::array<double, 4>, kMaxTextureUnits> texcoord{
+        {{0, 0, 0, 1}, {0, 0, 0, 1}, {0, 0, 0, 1}, {0, 0, 0, 1}}};
+  };
+  CurrentAttribs current_;
+  bool in_begin_ = false;
+  GLenum begin_mode_ = gl::TRIANGLES;
+  std::vector<ClipVertex> begin_vertices_;
+  std::array<int, 4> viewport_{0, 0, fb_.width(), fb_.height()};  // x, y, width, height (§2.10.1: the window)
+  double depth_near_ = 0, depth_far_ = 1;
+  GLenum shade_model_ = gl::SMOOTH;
+  int client_active_unit_ = 0;
+  std::array<TexEnvState, kMaxTextureUnits> texenv_{};
+  std::vector<std::uint32_t> generated_names_;  // glGenTextures names not yet bound
+  bool color_sum_ = false;
+  bool full_shading_ = false;
+  std::function<void(const std::string&)> on_explain_;
+  ClipVertex make_vertex(const glm::dvec4& object) const;
+  void set_texture_enable(GLenum target, bool on);
+  bool reject_in_begin(const char* function);
+  bool tex_parameter(const char* function, GLenum target, GLenum pname, const double* v, int count);
+  bool tex_env(const char* function, GLenum target, GLenum pname, const double* v, int count);
+  void draw_polygon(std::vector<ClipVertex> poly, std::size_t provoking, const ShadingState& st,
+                    const ShadingPlan& plan);
 
 
   // ==== [issue 4b] state ====

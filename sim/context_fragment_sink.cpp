@@ -1,18 +1,48 @@
 // Where fragments go: pixel-rectangle fragments (DrawPixels/CopyPixels) and the
 // per-fragment operations.
 //
-// Interim implementations, replaced by their owners:
-// - pixel_fragments (texturing of pixel-rectangle fragments with the raster
-//   position's texture coordinates, GL121 §3.6.4) -> rasterizer/texturing work;
-// - write_fragments (scissor, alpha, stencil, depth, blend, masks, GL121 §4.1)
-//   -> per-fragment operations work.
-// Until then: pixel fragments go straight to write_fragments, which writes colour
-// through the scissor box and the colour mask.
+// - pixel_fragments (texturing work, GL121 §3.6.4 "Conversion to Fragments"):
+//   when a texture unit is enabled, every fragment is textured with the raster
+//   position's texture coordinates (s/q, t/q) at λ = 0, the texture
+//   environments run on the fragment's colour as primary colour, and the colour
+//   sum adds a zero secondary colour (spec-notes choice #12); then
+//   write_fragments. With no unit enabled the span goes to write_fragments
+//   unchanged.
+// - write_fragments (scissor, alpha, stencil, depth, blend, masks, GL121 §4.1):
+//   interim body until the per-fragment operations work replaces it; writes
+//   colour through the scissor box and the colour mask.
 #include "sim/context.h"
 
 namespace ffsim {
 
-void Context::pixel_fragments(FragmentSpan& span) { write_fragments(span); }
+void Context::pixel_fragments(FragmentSpan& span) {
+  const ShadingState st = shading_state();
+  const ShadingPlan plan = shading_plan(st);
+  if (plan.any_texturing()) {
+    if (on_explain_) on_explain_(ffsim::explain_shading(st, plan));
+    UnitTexCoords tc{};
+    for (int u = 0; u < kMaxTextureUnits; ++u) {
+      const auto& r = raster_pos_.texcoord[u];
+      tc[u] = {r[0] / r[3], r[1] / r[3], 0.0};  // λ = 0 (ρ ≡ 1, §3.8.5)
+    }
+    const bool fixed = st.color.fixed();
+    const Rgba secondary{};  // zero
+    for (int i = 0; i < span.count; ++i) {
+      Rgba primary;
+      const std::size_t o = 4 * static_cast<std::size_t>(i);
+      for (int c = 0; c < 4; ++c) {
+        if (fixed) primary.code[c] = span.codes[o + c];
+        else primary.value[c] = span.values[o + c];
+      }
+      const Rgba out = shade_fragment(st, plan, primary, secondary, tc);
+      for (int c = 0; c < 4; ++c) {
+        if (fixed) span.codes[o + c] = static_cast<std::uint16_t>(out.code[c]);
+        else span.values[o + c] = out.value[c];
+      }
+    }
+  }
+  write_fragments(span);
+}
 
 void Context::write_fragments(FragmentSpan& span) {
   const Rect r = write_rect();

@@ -1,0 +1,103 @@
+#include "pipeline/raster/triangle.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ffsim {
+
+std::int64_t snap_coordinate(double v, int subpixel_bits) {
+  const double s = std::floor(std::ldexp(v, subpixel_bits) + 0.5);
+  if (!(s > -static_cast<double>(kMaxSnapped) * 4 && s < static_cast<double>(kMaxSnapped) * 4))
+    return s < 0 ? -kMaxSnapped * 4 : kMaxSnapped * 4;  // out of range (also NaN): rejected by the rasterizer
+  return static_cast<std::int64_t>(s);
+}
+
+namespace {
+
+std::int64_t floor_div(std::int64_t a, std::int64_t b) {  // b > 0
+  return a >= 0 ? a / b : -((-a + b - 1) / b);
+}
+std::int64_t ceil_div(std::int64_t a, std::int64_t b) { return -floor_div(-a, b); }
+
+struct Edge {
+  std::int64_t a = 0, b = 0, c = 0;  // E(p) = a·px + b·py + c
+  bool inclusive = false;            // a centre on this edge belongs to the triangle
+};
+
+// Edge from p to q, positive on its left (the interior of a counter-clockwise
+// triangle in y-up coordinates).
+Edge make_edge(const SnappedVertex& p, const SnappedVertex& q) {
+  const std::int64_t dx = q.x - p.x, dy = q.y - p.y;
+  Edge e;
+  // E = dx·(y − p.y) − dy·(x − p.x)
+  e.a = -dy;
+  e.b = dx;
+  e.c = dy * p.x - dx * p.y;
+  e.inclusive = dy < 0 || (dy == 0 && dx < 0);  // left edge, or top edge
+  return e;
+}
+
+}  // namespace
+
+TriangleCoverage rasterize_triangle(const std::array<SnappedVertex, 3>& vin, int S, int clip_x0, int clip_y0,
+                                    int clip_x1, int clip_y1,
+                                    const std::function<void(const TriangleCoverage&, const CoverageRun&)>& emit) {
+  TriangleCoverage cov;
+  for (const SnappedVertex& p : vin)
+    if (p.x < -kMaxSnapped || p.x > kMaxSnapped || p.y < -kMaxSnapped || p.y > kMaxSnapped) return cov;
+  std::array<SnappedVertex, 3> v = vin;
+  std::array<int, 3> idx{0, 1, 2};  // which input vertex each v[k] is
+  std::int64_t area = (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[2].x - v[0].x) * (v[1].y - v[0].y);
+  if (area == 0) return cov;
+  if (area < 0) {  // make it counter-clockwise; weights are mapped back through idx
+    std::swap(v[1], v[2]);
+    std::swap(idx[1], idx[2]);
+    area = -area;
+  }
+  // Edge opposite vertex k: from v[k+1] to v[k+2].
+  std::array<Edge, 3> e{make_edge(v[1], v[2]), make_edge(v[2], v[0]), make_edge(v[0], v[1])};
+  cov.area = area;
+  const std::int64_t one = std::int64_t{1} << S, half = one >> 1;
+  for (int k = 0; k < 3; ++k) {
+    cov.dwdx[idx[k]] = e[k].a * one;
+    cov.dwdy[idx[k]] = e[k].b * one;
+  }
+  // Bounding box of the centres that can be inside: centre = (x·2^S + 2^(S-1)).
+  const std::int64_t minx = std::min({v[0].x, v[1].x, v[2].x}), maxx = std::max({v[0].x, v[1].x, v[2].x});
+  const std::int64_t miny = std::min({v[0].y, v[1].y, v[2].y}), maxy = std::max({v[0].y, v[1].y, v[2].y});
+  // Pixels whose centre x·2^S + 2^(S-1) lies in [lo, hi].
+  auto first_pixel = [&](std::int64_t lo) { return ceil_div(lo - half, one); };
+  auto last_pixel = [&](std::int64_t hi) { return floor_div(hi - half, one); };
+  std::int64_t x0 = first_pixel(minx), x1 = last_pixel(maxx);
+  std::int64_t y0 = first_pixel(miny), y1 = last_pixel(maxy);
+  x0 = std::max<std::int64_t>(x0, clip_x0);
+  y0 = std::max<std::int64_t>(y0, clip_y0);
+  x1 = std::min<std::int64_t>(x1, clip_x1 - 1);
+  y1 = std::min<std::int64_t>(y1, clip_y1 - 1);
+  CoverageRun run;
+  for (std::int64_t y = y0; y <= y1; ++y) {
+    const std::int64_t py = y * one + half;
+    run.weight.clear();
+    run.y = static_cast<int>(y);
+    for (std::int64_t x = x0; x <= x1; ++x) {
+      const std::int64_t px = x * one + half;
+      std::array<std::int64_t, 3> w{};
+      bool in = true;
+      for (int k = 0; k < 3 && in; ++k) {
+        const std::int64_t ek = e[k].a * px + e[k].b * py + e[k].c;
+        in = ek > 0 || (ek == 0 && e[k].inclusive);
+        w[idx[k]] = ek;
+      }
+      if (in) {
+        if (run.weight.empty()) run.x0 = static_cast<int>(x);
+        run.weight.push_back(w);
+      } else if (!run.weight.empty()) {
+        break;  // a triangle's row is one contiguous run
+      }
+    }
+    if (!run.weight.empty()) emit(cov, run);
+  }
+  return cov;
+}
+
+}  // namespace ffsim

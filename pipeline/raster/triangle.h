@@ -1,0 +1,60 @@
+// Triangle rasterization (GL121 §3.5.1) on a sub-pixel grid with the OpenGL
+// pixel-centre rule and a top-left tie rule.
+//
+// Coordinates are window coordinates snapped to 1/2^S pixel (S = the profile's
+// subpixel_bits), held as integers relative to an integer origin (the viewport's
+// corner), so every edge function is an exact integer: no fragment depends on
+// floating-point rounding once the vertices are snapped.
+//
+// A fragment (x, y) is produced iff its centre (x + 1/2, y + 1/2) is inside the
+// triangle; a centre exactly on an edge belongs to the triangle only if that edge
+// is a "left" edge (interior to its right, going down in y-up window
+// coordinates) or a "top" edge (horizontal, interior below). Two triangles that
+// share an edge therefore never both produce, nor both miss, a centre on it
+// (docs/numerics.md §8.1).
+#pragma once
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+namespace ffsim {
+
+struct SnappedVertex {
+  std::int64_t x = 0, y = 0;  // window coordinate × 2^S, relative to the origin
+};
+
+// Snap a window coordinate (relative to the origin) to the grid: floor(v·2^S + 1/2).
+std::int64_t snap_coordinate(double v, int subpixel_bits);
+
+// Largest |snapped coordinate| the rasterizer accepts: keeps every edge function
+// below 2^61 in int64. Vertices beyond it (2^20 pixels from the origin at S = 8,
+// 2^24 at S = 4; clipped geometry stays inside the viewport, whose sides are at
+// most 16384) make the triangle draw nothing.
+inline constexpr std::int64_t kMaxSnapped = std::int64_t{1} << 28;
+
+// A row run of covered fragments. weight[i][k] is the edge function opposite
+// vertex k at fragment i's centre: the barycentric weight of vertex k is
+// weight[i][k] / area (all weights >= 0, sum = area).
+struct CoverageRun {
+  int y = 0;   // window row (relative to the origin)
+  int x0 = 0;  // first fragment (relative to the origin)
+  std::vector<std::array<std::int64_t, 3>> weight;
+};
+
+struct TriangleCoverage {
+  std::int64_t area = 0;  // twice the signed area in grid units², made positive; 0 = degenerate
+  // d(weight[k])/dx and /dy per pixel step: the gradients of the barycentric
+  // numerators (for derivatives, e.g. the texture LOD).
+  std::array<std::int64_t, 3> dwdx{}, dwdy{};
+};
+
+// Rasterize one triangle; `clip_*` bound the fragments produced (relative to the
+// origin, half-open: x in [clip_x0, clip_x1), y in [clip_y0, clip_y1)). Calls
+// `emit` with the setup for every non-empty run, bottom row first. Returns the
+// setup (area 0: degenerate, nothing was produced).
+TriangleCoverage rasterize_triangle(const std::array<SnappedVertex, 3>& v, int subpixel_bits, int clip_x0,
+                                    int clip_y0, int clip_x1, int clip_y1,
+                                    const std::function<void(const TriangleCoverage&, const CoverageRun&)>& emit);
+
+}  // namespace ffsim

@@ -1,0 +1,271 @@
+#include "pipeline/texenv/texenv.h"
+
+#include <algorithm>
+
+#include "pipeline/number/unorm.h"
+
+namespace ffsim {
+
+namespace {
+
+__extension__ typedef __int128 i128;
+
+i128 iabs(i128 v) { return v < 0 ? -v : v; }
+i128 gcd128(i128 a, i128 b) {
+  a = iabs(a);
+  b = iabs(b);
+  while (b != 0) {
+    const i128 r = a % b;
+    a = b;
+    b = r;
+  }
+  return a;
+}
+
+// An exact rational num/den (den > 0), reduced after every operation. The
+// texture environment's operands are codes k/(2^n - 1) with n <= 16, and no
+// formula multiplies more than three of them or adds more than three products,
+// so numerators and denominators stay far below 2^127.
+struct Rat {
+  i128 n = 0, d = 1;
+  Rat() = default;
+  Rat(i128 num, i128 den = 1) : n(num), d(den) {
+    const i128 g = gcd128(n, d);
+    if (g > 1) {
+      n /= g;
+      d /= g;
+    }
+  }
+  friend Rat operator+(Rat a, Rat b) { return a.d == b.d ? Rat(a.n + b.n, a.d) : Rat(a.n * b.d + b.n * a.d, a.d * b.d); }
+  friend Rat operator-(Rat a, Rat b) { return a.d == b.d ? Rat(a.n - b.n, a.d) : Rat(a.n * b.d - b.n * a.d, a.d * b.d); }
+  friend Rat operator*(Rat a, Rat b) { return Rat(a.n * b.n, a.d * b.d); }
+  friend bool operator<(Rat a, Rat b) { return a.n * b.d < b.n * a.d; }
+};
+
+template <class T> T half();
+template <> Rat half<Rat>() { return Rat(1, 2); }
+template <> double half<double>() { return 0.5; }
+
+template <class T>
+T clamp01(T v) {
+  if (v < T(0)) return T(0);
+  if (T(1) < v) return T(1);
+  return v;
+}
+template <class T>
+T min1(T v) {
+  return T(1) < v ? T(1) : v;
+}
+
+template <class T>
+using V4 = std::array<T, 4>;
+
+template <class T>
+T scale_of(double s) {
+  return T(static_cast<int>(s));  // RGB_SCALE / ALPHA_SCALE are 1, 2 or 4 (validated by glTexEnv)
+}
+
+bool has_color(BaseFormat b) { return b != BaseFormat::Alpha; }
+bool has_alpha(BaseFormat b) {
+  return b == BaseFormat::Alpha || b == BaseFormat::LuminanceAlpha || b == BaseFormat::Intensity ||
+         b == BaseFormat::RGBA;
+}
+
+// GL121 Table 3.18 / 3.19 and ARB_texture_env_add.
+template <class T>
+V4<T> classic(const TexEnvState& env, BaseFormat base, const V4<T>& cf, const V4<T>& ct, const V4<T>& cc) {
+  V4<T> out = cf;
+  const bool hc = has_color(base), ha = has_alpha(base);
+  switch (env.mode) {
+    case gl::REPLACE:
+      if (hc) for (int c = 0; c < 3; ++c) out[c] = ct[c];
+      if (ha) out[3] = ct[3];
+      break;
+    case gl::MODULATE:
+      if (hc) for (int c = 0; c < 3; ++c) out[c] = cf[c] * ct[c];
+      if (ha) out[3] = cf[3] * ct[3];
+      break;
+    case gl::DECAL:
+      if (base == BaseFormat::RGB) for (int c = 0; c < 3; ++c) out[c] = ct[c];
+      if (base == BaseFormat::RGBA) for (int c = 0; c < 3; ++c) out[c] = cf[c] * (T(1) - ct[3]) + ct[c] * ct[3];
+      break;
+    case gl::BLEND:
+      if (hc) for (int c = 0; c < 3; ++c) out[c] = cf[c] * (T(1) - ct[c]) + cc[c] * ct[c];
+      if (base == BaseFormat::Intensity) out[3] = cf[3] * (T(1) - ct[3]) + cc[3] * ct[3];
+      else if (ha) out[3] = cf[3] * ct[3];
+      break;
+    case gl::ADD:
+      if (hc) for (int c = 0; c < 3; ++c) out[c] = min1(cf[c] + ct[c]);
+      if (base == BaseFormat::Intensity) out[3] = min1(cf[3] + ct[3]);
+      else if (ha) out[3] = cf[3] * ct[3];
+      break;
+    default: break;
+  }
+  return out;
+}
+
+template <class T>
+const V4<T>& source(GLenum src, const V4<T>& cf, const V4<T>& prim, const V4<T>& ct, const V4<T>& cc) {
+  switch (src) {
+    case gl::TEXTURE: return ct;
+    case gl::CONSTANT: return cc;
+    case gl::PRIMARY_COLOR: return prim;
+    default: return cf;  // PREVIOUS
+  }
+}
+
+template <class T>
+T operand(GLenum op, const V4<T>& v, int c) {
+  switch (op) {
+    case gl::ONE_MINUS_SRC_COLOR: return T(1) - v[c];
+    case gl::SRC_ALPHA: return v[3];
+    case gl::ONE_MINUS_SRC_ALPHA: return T(1) - v[3];
+    default: return v[c];  // SRC_COLOR
+  }
+}
+
+template <class T>
+T combine_fn(GLenum f, T a0, T a1, T a2) {
+  switch (f) {
+    case gl::REPLACE: return a0;
+    case gl::ADD: return a0 + a1;
+    case gl::ADD_SIGNED: return a0 + a1 - half<T>();
+    case gl::INTERPOLATE: return a0 * a2 + a1 * (T(1) - a2);
+    case gl::SUBTRACT: return a0 - a1;
+    default: return a0 * a1;  // MODULATE
+  }
+}
+
+// ARB/EXT_texture_env_combine and _dot3: function, then ×scale, then clamp to [0,1].
+template <class T>
+V4<T> combine(const TexEnvState& env, const V4<T>& cf, const V4<T>& prim, const V4<T>& ct, const V4<T>& cc) {
+  V4<T> out{};
+  std::array<const V4<T>*, 3> srgb{}, sa{};
+  for (int i = 0; i < 3; ++i) {
+    srgb[i] = &source(env.source_rgb[i], cf, prim, ct, cc);
+    sa[i] = &source(env.source_alpha[i], cf, prim, ct, cc);
+  }
+  const GLenum frgb = env.combine_rgb;
+  const bool dot3_ext = frgb == gl::DOT3_RGB_EXT || frgb == gl::DOT3_RGBA_EXT;
+  const bool dot3_rgba = frgb == gl::DOT3_RGBA || frgb == gl::DOT3_RGBA_EXT;
+  if (is_dot3(frgb)) {
+    // 4·Σ (a0 − ½)(a1 − ½) over R, G, B (TD3 / ETD3).
+    T d = T(0);
+    for (int c = 0; c < 3; ++c)
+      d = d + (operand(env.operand_rgb[0], *srgb[0], c) - half<T>()) * (operand(env.operand_rgb[1], *srgb[1], c) - half<T>());
+    d = d * T(4);
+    const T rgb = clamp01(dot3_ext ? d : d * scale_of<T>(env.rgb_scale));
+    for (int c = 0; c < 3; ++c) out[c] = rgb;
+    // DOT3_RGBA: the dot product also goes to alpha, COMBINE_ALPHA ignored; ARB
+    // scales it by ALPHA_SCALE (GL 1.3 §3.8.13), EXT applies no scale.
+    if (dot3_rgba) out[3] = clamp01(dot3_ext ? d : d * scale_of<T>(env.alpha_scale));
+  } else {
+    const T s = scale_of<T>(env.rgb_scale);
+    for (int c = 0; c < 3; ++c) {
+      const T a0 = operand(env.operand_rgb[0], *srgb[0], c);
+      const T a1 = operand(env.operand_rgb[1], *srgb[1], c);
+      const T a2 = operand(env.operand_rgb[2], *srgb[2], c);
+      out[c] = clamp01(combine_fn(frgb, a0, a1, a2) * s);
+    }
+  }
+  if (!dot3_rgba) {
+    const T a0 = operand(env.operand_alpha[0], *sa[0], 3);
+    const T a1 = operand(env.operand_alpha[1], *sa[1], 3);
+    const T a2 = operand(env.operand_alpha[2], *sa[2], 3);
+    out[3] = clamp01(combine_fn(env.combine_alpha, a0, a1, a2) * scale_of<T>(env.alpha_scale));
+  }
+  return out;
+}
+
+template <class T>
+V4<T> evaluate(const TexEnvState& env, BaseFormat base, const V4<T>& cf, const V4<T>& prim, const V4<T>& ct,
+               const V4<T>& cc) {
+  return env.mode == gl::COMBINE ? combine(env, cf, prim, ct, cc) : classic(env, base, cf, ct, cc);
+}
+
+V4<Rat> rats(const std::array<std::uint32_t, 4>& k, int bits) {
+  const i128 m = unorm_max(bits);
+  return {Rat(k[0], m), Rat(k[1], m), Rat(k[2], m), Rat(k[3], m)};
+}
+
+}  // namespace
+
+int combine_arg_count(GLenum f) {
+  if (f == gl::REPLACE) return 1;
+  if (f == gl::INTERPOLATE) return 3;
+  return 2;
+}
+
+bool is_dot3(GLenum f) {
+  return f == gl::DOT3_RGB || f == gl::DOT3_RGBA || f == gl::DOT3_RGB_EXT || f == gl::DOT3_RGBA_EXT;
+}
+
+TexEnvReads texenv_reads(const TexEnvState& env, BaseFormat base) {
+  TexEnvReads r;
+  if (env.mode != gl::COMBINE) {
+    r.texture = true;
+    // Only REPLACE with a format that supplies both colour and alpha ignores Cf.
+    r.previous = !(env.mode == gl::REPLACE && has_color(base) && has_alpha(base));
+    if (env.mode == gl::DECAL && base != BaseFormat::RGB && base != BaseFormat::RGBA) r.texture = false;
+    return r;
+  }
+  auto note = [&](GLenum src) {
+    if (src == gl::TEXTURE) r.texture = true;
+    if (src == gl::PREVIOUS) r.previous = true;
+    if (src == gl::PRIMARY_COLOR) r.primary = true;
+  };
+  const int nrgb = is_dot3(env.combine_rgb) ? 2 : combine_arg_count(env.combine_rgb);
+  for (int i = 0; i < nrgb; ++i) note(env.source_rgb[i]);
+  if (env.combine_rgb != gl::DOT3_RGBA && env.combine_rgb != gl::DOT3_RGBA_EXT)
+    for (int i = 0; i < combine_arg_count(env.combine_alpha); ++i) note(env.source_alpha[i]);
+  return r;
+}
+
+Rgba rgba_from_values(const std::array<double, 4>& v, const ColorFormat& fmt) {
+  Rgba out;
+  for (int c = 0; c < 4; ++c) {
+    const double x = std::clamp(v[c], 0.0, 1.0);
+    if (fmt.arith == Arithmetic::Fixed) out.code[c] = unorm_from_double(v[c], fmt.bits);
+    else if (fmt.arith == Arithmetic::Float32) out.value[c] = static_cast<double>(static_cast<float>(x));
+    else out.value[c] = x;
+  }
+  return out;
+}
+
+Rgba texture_environment(const TexEnvState& env, const Rgba& previous, const Rgba& primary, const Texel& texel,
+                         const ColorFormat& fmt) {
+  Rgba out;
+  if (fmt.fixed()) {
+    std::array<std::uint32_t, 4> cc{};
+    for (int c = 0; c < 4; ++c) cc[c] = unorm_from_double(env.color[c], fmt.bits);
+    const V4<Rat> r = evaluate<Rat>(env, texel.base, rats(previous.code, fmt.bits), rats(primary.code, fmt.bits),
+                                    rats(texel.code, texel.bits), rats(cc, fmt.bits));
+    const i128 m = unorm_max(fmt.bits);
+    for (int c = 0; c < 4; ++c) {
+      const Rat v = clamp01(r[c]);
+      out.code[c] = static_cast<std::uint32_t>((2 * v.n * m + v.d) / (2 * v.d));  // round half up, once
+    }
+    return out;
+  }
+  const V4<double> r = evaluate<double>(env, texel.base, previous.value, primary.value, texel.value, env.color);
+  for (int c = 0; c < 4; ++c) {
+    const double v = clamp01(r[c]);
+    out.value[c] = fmt.arith == Arithmetic::Float32 ? static_cast<double>(static_cast<float>(v)) : v;
+  }
+  return out;
+}
+
+Rgba color_sum(const Rgba& primary, const Rgba& secondary, const ColorFormat& fmt) {
+  Rgba out = primary;
+  for (int c = 0; c < 3; ++c) {
+    if (fmt.fixed()) {
+      out.code[c] = std::min(primary.code[c] + secondary.code[c], unorm_max(fmt.bits));
+    } else {
+      const double v = std::min(primary.value[c] + secondary.value[c], 1.0);
+      out.value[c] = fmt.arith == Arithmetic::Float32 ? static_cast<double>(static_cast<float>(v)) : v;
+    }
+  }
+  return out;
+}
+
+}  // namespace ffsim

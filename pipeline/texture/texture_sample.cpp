@@ -1,0 +1,302 @@
+#include "pipeline/texture/texture_sample.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "pipeline/number/unorm.h"
+
+namespace ffsim {
+
+namespace {
+
+bool is_pow2(int n) { return n > 0 && (n & (n - 1)) == 0; }
+
+int floor_log2(int n) {
+  int l = 0;
+  while ((n >> (l + 1)) > 0) ++l;
+  return l;
+}
+
+// Stored components of the border colour, in storage order (texture_object.h),
+// selected by base format as Table 3.15 selects them from R, G, B, A.
+std::array<double, 4> border_components(BaseFormat base, const std::array<double, 4>& bc) {
+  switch (base) {
+    case BaseFormat::Alpha: return {bc[3], 0, 0, 0};
+    case BaseFormat::Luminance:
+    case BaseFormat::Intensity: return {bc[0], 0, 0, 0};
+    case BaseFormat::LuminanceAlpha: return {bc[0], bc[3], 0, 0};
+    case BaseFormat::RGB: return {bc[0], bc[1], bc[2], 0};
+    case BaseFormat::RGBA: return bc;
+  }
+  return bc;
+}
+
+// Texel (i, j) of a level in storage components, or the border colour when the
+// index lies outside the image including its border (GL121 §3.8.7).
+template <class V>
+std::array<V, 4> fetch(const TextureImage& im, int dims, int i, int j, const std::array<V, 4>& border) {
+  const int b = im.border;
+  const int ws = level_width(im), hs = level_height(im, dims);
+  const bool inside = i >= -b && i < ws + b && (dims == 1 || (j >= -b && j < hs + b));
+  if (!inside) return border;
+  const int n = component_count(im.base);
+  const std::size_t row = dims == 1 ? 0 : static_cast<std::size_t>(j + b);
+  const std::size_t idx = (row * static_cast<std::size_t>(im.width) + static_cast<std::size_t>(i + b)) * n;
+  std::array<V, 4> out{};
+  for (int c = 0; c < n; ++c) {
+    if constexpr (std::is_same_v<V, std::uint32_t>) out[c] = im.codes[idx + c];
+    else out[c] = im.values[idx + c];
+  }
+  return out;
+}
+
+template <class C>
+C sanitize(C s) {
+  return std::isfinite(s) ? s : C(0);  // non-finite coordinates sample at 0 (docs/numerics.md §8.3)
+}
+
+// Wrap of one coordinate for NEAREST (eq. 3.17-3.19): the texel index.
+template <class C>
+int nearest_index(C s, int n, GLenum wrap) {
+  s = sanitize(s);
+  if (wrap == gl::REPEAT) {
+    const C u = (s - std::floor(s)) * static_cast<C>(n);
+    const int i = static_cast<int>(std::floor(u));
+    return ((i % n) + n) % n;  // s - floor(s) may round up to 1 for tiny negative s
+  }
+  if (wrap == gl::CLAMP_TO_EDGE) {
+    const C lo = C(1) / static_cast<C>(2 * n);
+    s = std::clamp(s, lo, C(1) - lo);
+  } else {
+    s = std::clamp(s, C(0), C(1));
+  }
+  const int i = static_cast<int>(std::floor(s * static_cast<C>(n)));
+  return std::min(i, n - 1);  // s = 1 gives 2^n - 1 (eq. 3.19)
+}
+
+template <class C>
+struct LinearAxis {
+  int i0 = 0, i1 = 0;
+  C frac = 0;  // α of eq. 3.20: frac(u - 1/2)
+};
+
+template <class C>
+LinearAxis<C> linear_axis(C s, int n, GLenum wrap) {
+  s = sanitize(s);
+  if (wrap == gl::REPEAT) {
+    s = s - std::floor(s);
+  } else if (wrap == gl::CLAMP_TO_EDGE) {
+    const C lo = C(1) / static_cast<C>(2 * n);
+    s = std::clamp(s, lo, C(1) - lo);
+  } else {
+    s = std::clamp(s, C(0), C(1));
+  }
+  const C x = s * static_cast<C>(n) - C(0.5);
+  const C fl = std::floor(x);
+  LinearAxis<C> a;
+  a.i0 = static_cast<int>(fl);
+  a.i1 = a.i0 + 1;
+  a.frac = x - fl;  // exact in binary floating point
+  if (wrap == gl::REPEAT) {
+    a.i0 = ((a.i0 % n) + n) % n;
+    a.i1 = ((a.i1 % n) + n) % n;
+  } else if (wrap == gl::CLAMP_TO_EDGE) {
+    // s in [1/2n, 1-1/2n] puts i0 in [0, n-1]; i1 = n only with weight 0.
+    a.i0 = std::clamp(a.i0, 0, n - 1);
+    a.i1 = std::clamp(a.i1, 0, n - 1);
+  }
+  return a;
+}
+
+// Fixed profiles: one level, NEAREST or LINEAR, storage components as codes.
+template <class C>
+std::array<std::uint32_t, 4> level_codes(const TextureObject& tex, const TextureImage& im, int dims, GLenum filter,
+                                         C s, C t, int B) {
+  const int n = component_count(im.base);
+  const std::array<double, 4> bd = border_components(im.base, tex.params.border_color);
+  std::array<std::uint32_t, 4> border{};
+  for (int c = 0; c < n; ++c) border[c] = unorm_from_double(bd[c], im.bits);
+  const int ws = level_width(im), hs = level_height(im, dims);
+  if (filter == gl::NEAREST) {
+    const int i = nearest_index(s, ws, tex.params.wrap_s);
+    const int j = dims == 1 ? 0 : nearest_index(t, hs, tex.params.wrap_t);
+    return fetch(im, dims, i, j, border);
+  }
+  const std::uint64_t one = std::uint64_t{1} << B;
+  const LinearAxis<C> ax = linear_axis(s, ws, tex.params.wrap_s);
+  const auto a = static_cast<std::uint64_t>(std::floor(std::ldexp(ax.frac, B)));
+  std::array<std::uint32_t, 4> out{};
+  if (dims == 1) {
+    const auto t0 = fetch(im, dims, ax.i0, 0, border), t1 = fetch(im, dims, ax.i1, 0, border);
+    for (int c = 0; c < n; ++c) out[c] = static_cast<std::uint32_t>((t0[c] * (one - a) + t1[c] * a + one / 2) >> B);
+    return out;
+  }
+  const LinearAxis<C> ay = linear_axis(t, hs, tex.params.wrap_t);
+  const auto b = static_cast<std::uint64_t>(std::floor(std::ldexp(ay.frac, B)));
+  const auto t00 = fetch(im, dims, ax.i0, ay.i0, border), t10 = fetch(im, dims, ax.i1, ay.i0, border);
+  const auto t01 = fetch(im, dims, ax.i0, ay.i1, border), t11 = fetch(im, dims, ax.i1, ay.i1, border);
+  const std::uint64_t w00 = (one - a) * (one - b), w10 = a * (one - b), w01 = (one - a) * b, w11 = a * b;
+  const int B2 = 2 * B;
+  for (int c = 0; c < n; ++c) {
+    const std::uint64_t sum = t00[c] * w00 + t10[c] * w10 + t01[c] * w01 + t11[c] * w11;
+    out[c] = static_cast<std::uint32_t>((sum + (std::uint64_t{1} << (B2 - 1))) >> B2);
+  }
+  return out;
+}
+
+// Float profiles: the real formula of eq. 3.20 in C (binary32 or binary64).
+template <class C>
+std::array<double, 4> level_values(const TextureObject& tex, const TextureImage& im, int dims, GLenum filter, C s,
+                                   C t) {
+  const int n = component_count(im.base);
+  const std::array<double, 4> border = border_components(im.base, tex.params.border_color);
+  const int ws = level_width(im), hs = level_height(im, dims);
+  if (filter == gl::NEAREST) {
+    const int i = nearest_index(s, ws, tex.params.wrap_s);
+    const int j = dims == 1 ? 0 : nearest_index(t, hs, tex.params.wrap_t);
+    return fetch(im, dims, i, j, border);
+  }
+  const LinearAxis<C> ax = linear_axis(s, ws, tex.params.wrap_s);
+  std::array<double, 4> out{};
+  if (dims == 1) {
+    const auto t0 = fetch(im, dims, ax.i0, 0, border), t1 = fetch(im, dims, ax.i1, 0, border);
+    for (int c = 0; c < n; ++c)
+      out[c] = static_cast<double>((C(1) - ax.frac) * static_cast<C>(t0[c]) + ax.frac * static_cast<C>(t1[c]));
+    return out;
+  }
+  const LinearAxis<C> ay = linear_axis(t, hs, tex.params.wrap_t);
+  const auto t00 = fetch(im, dims, ax.i0, ay.i0, border), t10 = fetch(im, dims, ax.i1, ay.i0, border);
+  const auto t01 = fetch(im, dims, ax.i0, ay.i1, border), t11 = fetch(im, dims, ax.i1, ay.i1, border);
+  const C a = ax.frac, b = ay.frac;
+  for (int c = 0; c < n; ++c) {
+    const C v = (C(1) - a) * (C(1) - b) * static_cast<C>(t00[c]) + a * (C(1) - b) * static_cast<C>(t10[c]) +
+                (C(1) - a) * b * static_cast<C>(t01[c]) + a * b * static_cast<C>(t11[c]);
+    out[c] = static_cast<double>(v);
+  }
+  return out;
+}
+
+}  // namespace
+
+Texel expand_texel(BaseFormat base, int bits, const std::array<std::uint32_t, 4>& k) {
+  const std::uint32_t one = unorm_max(bits);
+  Texel t;
+  t.base = base;
+  t.bits = bits;
+  switch (base) {
+    case BaseFormat::Alpha: t.code = {0, 0, 0, k[0]}; break;
+    case BaseFormat::Luminance: t.code = {k[0], k[0], k[0], one}; break;
+    case BaseFormat::LuminanceAlpha: t.code = {k[0], k[0], k[0], k[1]}; break;
+    case BaseFormat::Intensity: t.code = {k[0], k[0], k[0], k[0]}; break;
+    case BaseFormat::RGB: t.code = {k[0], k[1], k[2], one}; break;
+    case BaseFormat::RGBA: t.code = k; break;
+  }
+  return t;
+}
+
+Texel expand_texel(BaseFormat base, const std::array<double, 4>& v) {
+  Texel t;
+  t.base = base;
+  t.bits = 0;
+  switch (base) {
+    case BaseFormat::Alpha: t.value = {0, 0, 0, v[0]}; break;
+    case BaseFormat::Luminance: t.value = {v[0], v[0], v[0], 1}; break;
+    case BaseFormat::LuminanceAlpha: t.value = {v[0], v[0], v[0], v[1]}; break;
+    case BaseFormat::Intensity: t.value = {v[0], v[0], v[0], v[0]}; break;
+    case BaseFormat::RGB: t.value = {v[0], v[1], v[2], 1}; break;
+    case BaseFormat::RGBA: t.value = v; break;
+  }
+  return t;
+}
+
+int last_mipmap_level(const TextureObject& tex, int dims) {
+  const int b = tex.params.base_level;
+  const TextureImage& im = tex.levels[static_cast<std::size_t>(b)];
+  const int p = floor_log2(std::max(level_width(im), level_height(im, dims))) + b;
+  return std::min(p, tex.params.max_level);
+}
+
+bool texture_complete(const TextureObject& tex, int dims, const SampleFormat& fmt) {
+  const int b = tex.params.base_level;
+  if (b < 0 || b > tex.params.max_level || static_cast<std::size_t>(b) >= tex.levels.size()) return false;
+  auto level_ok = [&](const TextureImage& im, int ws, int hs, const TextureImage& base) {
+    if (im.empty() || im.base != base.base || im.border != base.border) return false;
+    if (level_width(im) != ws || level_height(im, dims) != hs) return false;
+    if (dims == 1 && im.height != 1) return false;
+    const std::size_t need = static_cast<std::size_t>(im.width) * im.height * component_count(im.base);
+    if (fmt.arith == Arithmetic::Fixed) return im.codes.size() >= need && im.bits >= 1 && im.bits <= 16;
+    return im.values.size() >= need;
+  };
+  const TextureImage& base = tex.levels[static_cast<std::size_t>(b)];
+  const int ws = level_width(base), hs = level_height(base, dims);
+  if (!is_pow2(ws) || !is_pow2(hs) || !level_ok(base, ws, hs, base)) return false;
+  if (!is_mipmap_filter(tex.params.min_filter)) return true;
+  const int q = last_mipmap_level(tex, dims);
+  for (int k = b + 1; k <= q; ++k) {
+    if (static_cast<std::size_t>(k) >= tex.levels.size()) return false;
+    if (!level_ok(tex.levels[static_cast<std::size_t>(k)], std::max(1, ws >> (k - b)), std::max(1, hs >> (k - b)),
+                  base))
+      return false;
+  }
+  return true;
+}
+
+Texel sample_level(const TextureObject& tex, int level, int dims, GLenum filter, double s, double t,
+                   const SampleFormat& fmt) {
+  const TextureImage& im = tex.levels[static_cast<std::size_t>(level)];
+  const auto sf = static_cast<float>(s), tf = static_cast<float>(t);
+  if (fmt.arith == Arithmetic::Fixed)
+    return expand_texel(im.base, im.bits, level_codes<float>(tex, im, dims, filter, sf, tf, fmt.weight_bits));
+  if (fmt.arith == Arithmetic::Float32) return expand_texel(im.base, level_values<float>(tex, im, dims, filter, sf, tf));
+  return expand_texel(im.base, level_values<double>(tex, im, dims, filter, s, t));
+}
+
+Texel sample_texture(const TextureObject& tex, int dims, double s, double t, double lambda_in,
+                     const SampleFormat& fmt) {
+  const TextureParams& p = tex.params;
+  // λ in binary32 (binary64 for the ideal profile); NaN (0/0 derivatives) -> 0.
+  double lambda = std::isnan(lambda_in) ? 0.0 : lambda_in;
+  lambda = std::clamp(lambda, p.min_lod, p.max_lod);
+  if (fmt.arith != Arithmetic::Float64) lambda = static_cast<float>(lambda);
+  const double c = (p.mag_filter == gl::LINEAR &&
+                   (p.min_filter == gl::NEAREST_MIPMAP_NEAREST || p.min_filter == gl::NEAREST_MIPMAP_LINEAR))
+                      ? 0.5
+                      : 0.0;
+  const int b = p.base_level;
+  if (lambda <= c) return sample_level(tex, b, dims, p.mag_filter, s, t, fmt);
+  if (!is_mipmap_filter(p.min_filter)) return sample_level(tex, b, dims, p.min_filter, s, t, fmt);
+  const int q = last_mipmap_level(tex, dims);
+  const GLenum f =
+      (p.min_filter == gl::NEAREST_MIPMAP_NEAREST || p.min_filter == gl::NEAREST_MIPMAP_LINEAR) ? gl::NEAREST
+                                                                                                 : gl::LINEAR;
+  const double bl = b + lambda;  // exact: b is a small integer
+  if (p.min_filter == gl::NEAREST_MIPMAP_NEAREST || p.min_filter == gl::LINEAR_MIPMAP_NEAREST) {
+    int d = q;  // eq. 3.21
+    if (lambda <= 0.5) d = b;
+    else if (bl <= q + 0.5) d = static_cast<int>(std::ceil(bl + 0.5)) - 1;
+    return sample_level(tex, d, dims, f, s, t, fmt);
+  }
+  if (bl >= q) return sample_level(tex, q, dims, f, s, t, fmt);  // eq. 3.22, d1 = d2 = q
+  const int d1 = static_cast<int>(std::floor(bl)), d2 = d1 + 1;
+  const double fr = lambda - std::floor(lambda);  // frac(λ), exact
+  const Texel t1 = sample_level(tex, d1, dims, f, s, t, fmt), t2 = sample_level(tex, d2, dims, f, s, t, fmt);
+  Texel out = t1;
+  if (fmt.arith == Arithmetic::Fixed) {
+    const int B = fmt.weight_bits;
+    const std::uint64_t one = std::uint64_t{1} << B;
+    const auto w = static_cast<std::uint64_t>(std::floor(std::ldexp(fr, B)));
+    for (int c = 0; c < 4; ++c) {
+      const std::uint64_t k2 = unorm_convert(t2.code[c], t2.bits, t1.bits);
+      out.code[c] = static_cast<std::uint32_t>((t1.code[c] * (one - w) + k2 * w + one / 2) >> B);
+    }
+  } else if (fmt.arith == Arithmetic::Float32) {
+    for (int c = 0; c < 4; ++c)
+      out.value[c] = static_cast<double>((1.0f - static_cast<float>(fr)) * static_cast<float>(t1.value[c]) +
+                                         static_cast<float>(fr) * static_cast<float>(t2.value[c]));
+  } else {
+    for (int c = 0; c < 4; ++c) out.value[c] = (1.0 - fr) * t1.value[c] + fr * t2.value[c];
+  }
+  return out;
+}
+
+}  // namespace ffsim

@@ -1,0 +1,183 @@
+// Immediate-mode geometry (GL121 §2.6-2.12): glBegin/glEnd and the current
+// vertex attributes, the viewport and depth range, the shading model and the
+// raster position. Primitives are assembled at glEnd and drawn by
+// sim/draw.cpp (clipping, rasterization, shading).
+#include <algorithm>
+#include <cmath>
+
+#include "pipeline/gl/enum_names.h"
+#include "sim/context.h"
+
+namespace ffsim {
+
+namespace {
+
+constexpr int kMaxViewportDims = 16384;  // MAX_VIEWPORT_DIMS (= the largest framebuffer side)
+
+bool drawable_mode(GLenum m) {
+  return m == gl::TRIANGLES || m == gl::TRIANGLE_STRIP || m == gl::TRIANGLE_FAN || m == gl::QUADS ||
+         m == gl::QUAD_STRIP || m == gl::POLYGON;
+}
+
+double clamp01(double v) { return std::isnan(v) ? 0.0 : std::clamp(v, 0.0, 1.0); }
+
+}  // namespace
+
+bool Context::reject_in_begin(const char* function) {
+  if (!in_begin_) return false;
+  error(gl::INVALID_OPERATION, function, "not allowed between glBegin and glEnd");
+  return true;
+}
+
+void Context::begin(GLenum mode) {
+  if (in_begin_) {
+    error(gl::INVALID_OPERATION, "glBegin", "glBegin inside glBegin/glEnd");
+    return;
+  }
+  if (mode == gl::POINTS || mode == gl::LINES || mode == gl::LINE_LOOP || mode == gl::LINE_STRIP) {
+    error(gl::INVALID_ENUM, "glBegin", gl::enum_name(mode) + ": points and lines are not modelled by ffsim");
+    return;
+  }
+  if (!drawable_mode(mode)) {
+    error(gl::INVALID_ENUM, "glBegin", gl::enum_name(mode) + " is not a primitive mode");
+    return;
+  }
+  in_begin_ = true;
+  begin_mode_ = mode;
+  begin_vertices_.clear();
+}
+
+void Context::end() {
+  if (!in_begin_) {
+    error(gl::INVALID_OPERATION, "glEnd", "glEnd without glBegin");
+    return;
+  }
+  in_begin_ = false;
+  std::vector<ClipVertex> v;
+  v.swap(begin_vertices_);
+  const std::size_t n = v.size();
+  const ShadingState st = shading_state();
+  const ShadingPlan plan = shading_plan(st);
+  if (on_explain_ && n >= 3) on_explain_(ffsim::explain_shading(st, plan));
+  auto draw_polygon = [&](std::vector<ClipVertex> poly, std::size_t provoking) {
+    this->draw_polygon(std::move(poly), provoking, st, plan);
+  };
+  // Provoking vertex for flat shading (GL121 Table 2.9, 0-based here).
+  switch (begin_mode_) {
+    case gl::TRIANGLES:
+      for (std::size_t i = 0; i + 2 < n; i += 3) draw_polygon({v[i], v[i + 1], v[i + 2]}, 2);
+      break;
+    case gl::TRIANGLE_STRIP:
+      for (std::size_t i = 0; i + 2 < n; ++i) {
+        if (i % 2 == 0) draw_polygon({v[i], v[i + 1], v[i + 2]}, 2);
+        else draw_polygon({v[i + 1], v[i], v[i + 2]}, 2);  // keep the strip's orientation
+      }
+      break;
+    case gl::TRIANGLE_FAN:
+      for (std::size_t i = 1; i + 1 < n; ++i) draw_polygon({v[0], v[i], v[i + 1]}, 2);
+      break;
+    case gl::QUADS:
+      for (std::size_t i = 0; i + 3 < n; i += 4) draw_polygon({v[i], v[i + 1], v[i + 2], v[i + 3]}, 3);
+      break;
+    case gl::QUAD_STRIP:
+      for (std::size_t i = 0; i + 3 < n; i += 2) draw_polygon({v[i], v[i + 1], v[i + 3], v[i + 2]}, 2);
+      break;
+    case gl::POLYGON:
+      if (n >= 3) draw_polygon(v, 0);
+      break;
+    default: break;
+  }
+}
+
+ClipVertex Context::make_vertex(const glm::dvec4& object) const {
+  ClipVertex cv;
+  cv.position = projection_.top() * (modelview_.top() * object);
+  for (int c = 0; c < 4; ++c) {
+    cv.color[c] = clamp01(current_.color[c]);  // §2.13.6 colour clamping
+    cv.secondary[c] = clamp01(current_.secondary[c]);
+  }
+  for (int u = 0; u < kMaxTextureUnits; ++u) {
+    const auto& tc = current_.texcoord[u];
+    cv.texcoord[u] = texture_matrix_[u].top() * glm::dvec4(tc[0], tc[1], tc[2], tc[3]);
+  }
+  return cv;
+}
+
+void Context::vertex4(double x, double y, double z, double w) {
+  // Outside glBegin/glEnd a vertex has no effect (GL121 §2.6.3 leaves it undefined).
+  if (!in_begin_) return;
+  begin_vertices_.push_back(make_vertex(glm::dvec4(x, y, z, w)));
+}
+void Context::vertex2(double x, double y) { vertex4(x, y, 0, 1); }
+void Context::vertex3(double x, double y, double z) { vertex4(x, y, z, 1); }
+
+void Context::color4(double r, double g, double b, double a) { current_.color = {r, g, b, a}; }
+void Context::color3(double r, double g, double b) { color4(r, g, b, 1); }
+void Context::secondaryColor3(double r, double g, double b) { current_.secondary = {r, g, b, 0}; }
+void Context::normal3(double x, double y, double z) { current_.normal = {x, y, z, 0}; }
+void Context::texCoord4(double s, double t, double r, double q) { current_.texcoord[0] = {s, t, r, q}; }
+void Context::texCoord2(double s, double t) { texCoord4(s, t, 0, 1); }
+
+void Context::multiTexCoord4(GLenum texture, double s, double t, double r, double q) {
+  const int unit = static_cast<int>(texture) - static_cast<int>(gl::TEXTURE0);
+  if (unit < 0 || unit >= profile_.texture_units) {
+    error(gl::INVALID_ENUM, "glMultiTexCoord",
+          gl::enum_name(texture) + " is not a texture unit (" + std::to_string(profile_.texture_units) + " units)");
+    return;
+  }
+  current_.texcoord[unit] = {s, t, r, q};
+}
+void Context::multiTexCoord2(GLenum texture, double s, double t) { multiTexCoord4(texture, s, t, 0, 1); }
+
+void Context::viewport(int x, int y, int width, int height) {
+  if (reject_in_begin("glViewport")) return;
+  if (width < 0 || height < 0) {
+    error(gl::INVALID_VALUE, "glViewport", "negative width or height");
+    return;
+  }
+  // §2.10.1: width and height are silently clamped to MAX_VIEWPORT_DIMS.
+  viewport_ = {x, y, std::min(width, kMaxViewportDims), std::min(height, kMaxViewportDims)};
+}
+
+void Context::depthRange(double n, double f) {
+  if (reject_in_begin("glDepthRange")) return;
+  depth_near_ = clamp01(n);  // §2.10.1: clamped to [0,1]
+  depth_far_ = clamp01(f);
+}
+
+void Context::shadeModel(GLenum mode) {
+  if (reject_in_begin("glShadeModel")) return;
+  if (mode != gl::FLAT && mode != gl::SMOOTH) {
+    error(gl::INVALID_ENUM, "glShadeModel", gl::enum_name(mode) + " is not FLAT or SMOOTH");
+    return;
+  }
+  shade_model_ = mode;
+}
+
+// §2.12: the raster position is transformed like a vertex; if it lies outside
+// the view volume it is invalid, otherwise it takes window coordinates, the
+// clip w, the current colours and the current texture coordinates after the
+// texture matrix.
+void Context::rasterPos4(double x, double y, double z, double w) {
+  if (reject_in_begin("glRasterPos")) return;
+  const ClipVertex cv = make_vertex(glm::dvec4(x, y, z, w));
+  RasterPosState& rp = raster_pos_;
+  if (!inside_view_volume(cv.position)) {
+    rp.valid = false;
+    return;
+  }
+  const glm::dvec4& p = cv.position;
+  rp.valid = true;
+  rp.x = viewport_[0] + (p.x / p.w + 1) * (viewport_[2] / 2.0);
+  rp.y = viewport_[1] + (p.y / p.w + 1) * (viewport_[3] / 2.0);
+  rp.z = depth_near_ + (depth_far_ - depth_near_) * ((p.z / p.w + 1) / 2);
+  rp.w = p.w;
+  rp.color = cv.color;
+  rp.secondary_color = cv.secondary;
+  for (int u = 0; u < kMaxTextureUnits; ++u)
+    rp.texcoord[u] = {cv.texcoord[u].x, cv.texcoord[u].y, cv.texcoord[u].z, cv.texcoord[u].w};
+}
+void Context::rasterPos2(double x, double y) { rasterPos4(x, y, 0, 1); }
+void Context::rasterPos3(double x, double y, double z) { rasterPos4(x, y, z, 1); }
+
+}  // namespace ffsim

@@ -1,0 +1,218 @@
+// Drawing a polygon (GL121 §2.11-2.13, §3.5, §3.8-3.9): clipping to the view
+// volume, the viewport and depth-range transformation, snapping to the
+// sub-pixel grid, rasterization with the fill rule, attribute interpolation,
+// then per fragment: texture fetch, texture environments, colour sum; finished
+// spans go to write_fragments (the per-fragment operations).
+//
+// Interpolation (docs/numerics.md §8.2): with barycentric numerators w_k (exact
+// integers from the rasterizer, sum A),
+//   colour codes  k = floor((2·Σ w_k·k_k + A) / 2A)   (exact, round half up once),
+//   depth codes   z = floor((2·Σ w_k·z_k + A) / 2A),
+//   texture coordinates perspective-correct in binary64:
+//     s = Σ w_k·s_k/w_clip_k / Σ w_k·q_k/w_clip_k  (then s/q is what is sampled).
+#include <algorithm>
+#include <cmath>
+
+#include "pipeline/number/unorm.h"
+#include "pipeline/raster/triangle.h"
+#include "sim/context.h"
+
+namespace ffsim {
+
+namespace {
+
+__extension__ typedef __int128 i128;
+
+struct WindowVertex {
+  SnappedVertex p;
+  std::array<std::uint32_t, 4> color_code{}, secondary_code{};
+  std::array<double, 4> color{}, secondary{};
+  std::uint32_t depth = 0;
+  std::array<std::array<double, 3>, kMaxTextureUnits> tcw{};  // s/w, t/w, q/w
+};
+
+double to_color_value(double v, Arithmetic a) {
+  return a == Arithmetic::Float32 ? static_cast<double>(static_cast<float>(v)) : v;
+}
+
+std::uint32_t interpolate_code(const std::array<std::int64_t, 3>& w, std::int64_t area, std::uint32_t k0,
+                               std::uint32_t k1, std::uint32_t k2) {
+  const i128 num = i128{w[0]} * k0 + i128{w[1]} * k1 + i128{w[2]} * k2;
+  return static_cast<std::uint32_t>((2 * num + area) / (2 * i128{area}));
+}
+
+// Whether λ can change the result: only when minification and magnification
+// differ (a mipmap minification filter, or different NEAREST/LINEAR choices).
+bool needs_lod(const TextureParams& p) { return is_mipmap_filter(p.min_filter) || p.min_filter != p.mag_filter; }
+
+}  // namespace
+
+ShadingState Context::shading_state() {
+  ShadingState st;
+  st.color = ColorFormat::from_profile(profile_);
+  st.sample = SampleFormat::from_profile(profile_);
+  st.color_sum = color_sum_;
+  for (int u = 0; u < profile_.texture_units; ++u) {
+    const TextureUnitBinding& b = units_[u];
+    ShadeUnit& su = st.units[u];
+    su.env = texenv_[u];
+    // §3.8.13: TEXTURE_2D takes precedence over TEXTURE_1D; an incomplete texture
+    // disables the unit.
+    const GLenum target = b.enabled_2d ? gl::TEXTURE_2D : (b.enabled_1d ? gl::TEXTURE_1D : 0);
+    if (target == 0) continue;
+    const TextureObject& tex = bound_texture(u, target);
+    su.dims = target == gl::TEXTURE_1D ? 1 : 2;
+    if (texture_complete(tex, su.dims, st.sample)) su.texture = &tex;
+  }
+  return st;
+}
+
+ShadingPlan Context::shading_plan(const ShadingState& st) const {
+  return full_shading_ ? full_shading_plan(st) : plan_shading(st);
+}
+
+std::string Context::explain_shading() {
+  const ShadingState st = shading_state();
+  return ffsim::explain_shading(st, shading_plan(st));
+}
+
+Rgba Context::shade_fragment(const ShadingState& st, const ShadingPlan& plan, const Rgba& primary,
+                             const Rgba& secondary, const UnitTexCoords& tc) {
+  UnitTexels texels{};
+  fetch_texels(st, plan, tc, texels);                                  // step 1
+  return texture_environments(st, plan, primary, secondary, texels);  // step 2
+}
+
+void Context::draw_polygon(std::vector<ClipVertex> poly, std::size_t provoking, const ShadingState& st,
+                           const ShadingPlan& plan) {
+  if (shade_model_ == gl::FLAT) {  // §2.13.7: every vertex takes the provoking vertex's colours
+    for (ClipVertex& v : poly) {
+      v.color = poly[provoking].color;
+      v.secondary = poly[provoking].secondary;
+    }
+  }
+  poly = clip_polygon(std::move(poly));
+  if (poly.size() < 3) return;
+  for (const ClipVertex& v : poly)
+    if (!(v.position.w > 0)) return;  // only a polygon through the eye point itself: no area
+
+  const Arithmetic arith = profile_.arithmetic;
+  const int S = profile_.subpixel_bits;
+  const int vx = viewport_[0], vy = viewport_[1];
+  const double hw = viewport_[2] / 2.0, hh = viewport_[3] / 2.0;
+  const bool has_depth = fb_.has_depth();
+  std::vector<WindowVertex> wv(poly.size());
+  for (std::size_t i = 0; i < poly.size(); ++i) {
+    const ClipVertex& c = poly[i];
+    WindowVertex& w = wv[i];
+    const double iw = 1.0 / c.position.w;
+    // §2.10.1 viewport transformation, relative to the viewport corner (vx, vy).
+    w.p.x = snap_coordinate((c.position.x * iw + 1) * hw, S);
+    w.p.y = snap_coordinate((c.position.y * iw + 1) * hh, S);
+    const double zw = depth_near_ + (depth_far_ - depth_near_) * ((c.position.z * iw + 1) / 2);
+    if (has_depth) w.depth = unorm_from_double(zw, fb_.format().depth_bits);
+    for (int k = 0; k < 4; ++k) {
+      if (arith == Arithmetic::Fixed) {
+        w.color_code[k] = unorm_from_double(c.color[k], profile_.color_bits);
+        w.secondary_code[k] = unorm_from_double(c.secondary[k], profile_.color_bits);
+      } else {
+        w.color[k] = to_color_value(std::clamp(c.color[k], 0.0, 1.0), arith);
+        w.secondary[k] = to_color_value(std::clamp(c.secondary[k], 0.0, 1.0), arith);
+      }
+    }
+    for (int u = 0; u < kMaxTextureUnits; ++u)
+      w.tcw[u] = {c.texcoord[u].x * iw, c.texcoord[u].y * iw, c.texcoord[u].w * iw};
+  }
+
+  const bool flat = shade_model_ == gl::FLAT;
+  const bool shade = plan.any_texturing() || plan.color_sum;
+  // Window bounds relative to the viewport corner (pixel ownership, §4.1.1).
+  const int cx0 = -vx, cy0 = -vy, cx1 = fb_.width() - vx, cy1 = fb_.height() - vy;
+  for (std::size_t i = 1; i + 1 < wv.size(); ++i) {
+    const std::array<const WindowVertex*, 3> tv{&wv[0], &wv[i], &wv[i + 1]};
+    auto emit = [&](const TriangleCoverage& cov, const CoverageRun& run) {
+      const std::int64_t A = cov.area;
+      const int n = static_cast<int>(run.weight.size());
+      FragmentSpan span;
+      span.y = run.y + vy;
+      span.x0 = run.x0 + vx;
+      span.count = n;
+      if (arith == Arithmetic::Fixed) span.codes.resize(4 * static_cast<std::size_t>(n));
+      else span.values.resize(4 * static_cast<std::size_t>(n));
+      if (has_depth) span.depth.resize(static_cast<std::size_t>(n));
+      for (int f = 0; f < n; ++f) {
+        const auto& w = run.weight[static_cast<std::size_t>(f)];
+        if (has_depth) span.depth[f] = interpolate_code(w, A, tv[0]->depth, tv[1]->depth, tv[2]->depth);
+        Rgba primary, secondary;
+        for (int k = 0; k < 4; ++k) {
+          if (arith == Arithmetic::Fixed) {
+            primary.code[k] = flat ? tv[0]->color_code[k]
+                                   : interpolate_code(w, A, tv[0]->color_code[k], tv[1]->color_code[k], tv[2]->color_code[k]);
+            secondary.code[k] = flat ? tv[0]->secondary_code[k]
+                                     : interpolate_code(w, A, tv[0]->secondary_code[k], tv[1]->secondary_code[k],
+                                                        tv[2]->secondary_code[k]);
+          } else {
+            const double a = static_cast<double>(A);
+            primary.value[k] = flat ? tv[0]->color[k]
+                                    : to_color_value((static_cast<double>(w[0]) * tv[0]->color[k] +
+                                                      static_cast<double>(w[1]) * tv[1]->color[k] +
+                                                      static_cast<double>(w[2]) * tv[2]->color[k]) / a, arith);
+            secondary.value[k] = flat ? tv[0]->secondary[k]
+                                      : to_color_value((static_cast<double>(w[0]) * tv[0]->secondary[k] +
+                                                        static_cast<double>(w[1]) * tv[1]->secondary[k] +
+                                                        static_cast<double>(w[2]) * tv[2]->secondary[k]) / a, arith);
+          }
+        }
+        Rgba out = primary;
+        if (shade) {
+          UnitTexCoords tc{};
+          for (int u = 0; u < kMaxTextureUnits; ++u) {
+            if (!plan.sample[u]) continue;
+            const double a = static_cast<double>(A);
+            std::array<double, 3> v{}, dx{}, dy{};  // s/w, t/w, q/w and their x, y derivatives
+            for (int j = 0; j < 3; ++j) {
+              for (int k = 0; k < 3; ++k) {
+                v[j] += static_cast<double>(w[k]) * tv[k]->tcw[u][j];
+                dx[j] += static_cast<double>(cov.dwdx[k]) * tv[k]->tcw[u][j];
+                dy[j] += static_cast<double>(cov.dwdy[k]) * tv[k]->tcw[u][j];
+              }
+              v[j] /= a;
+              dx[j] /= a;
+              dy[j] /= a;
+            }
+            const double q = v[2];
+            tc[u].s = v[0] / q;
+            tc[u].t = v[1] / q;
+            const TextureObject& tex = *st.units[u].texture;
+            if (!needs_lod(tex.params)) continue;
+            // ρ of GL121 eq. 3.15 from the exact derivatives of s = N/D at the centre.
+            const TextureImage& base = tex.levels[static_cast<std::size_t>(tex.params.base_level)];
+            const double ws = level_width(base), hs = level_height(base, st.units[u].dims);
+            const double ux = (dx[0] * q - v[0] * dx[2]) / (q * q) * ws, uy = (dy[0] * q - v[0] * dy[2]) / (q * q) * ws;
+            const double vxd = (dx[1] * q - v[1] * dx[2]) / (q * q) * hs, vyd = (dy[1] * q - v[1] * dy[2]) / (q * q) * hs;
+            const bool one_d = st.units[u].dims == 1;
+            if (arith == Arithmetic::Float64) {
+              const double rx = std::sqrt(ux * ux + (one_d ? 0.0 : vxd * vxd));
+              const double ry = std::sqrt(uy * uy + (one_d ? 0.0 : vyd * vyd));
+              tc[u].lambda = std::log2(std::max(rx, ry));
+            } else {
+              const auto fux = static_cast<float>(ux), fuy = static_cast<float>(uy);
+              const auto fvx = one_d ? 0.0f : static_cast<float>(vxd), fvy = one_d ? 0.0f : static_cast<float>(vyd);
+              const float rx = std::sqrt(fux * fux + fvx * fvx), ry = std::sqrt(fuy * fuy + fvy * fvy);
+              tc[u].lambda = static_cast<double>(std::log2(std::max(rx, ry)));
+            }
+          }
+          out = shade_fragment(st, plan, primary, secondary, tc);
+        }
+        for (int k = 0; k < 4; ++k) {
+          if (arith == Arithmetic::Fixed) span.codes[4 * static_cast<std::size_t>(f) + k] = static_cast<std::uint16_t>(out.code[k]);
+          else span.values[4 * static_cast<std::size_t>(f) + k] = out.value[k];
+        }
+      }
+      write_fragments(span);
+    };
+    rasterize_triangle({tv[0]->p, tv[1]->p, tv[2]->p}, S, cx0, cy0, cx1, cy1, emit);
+  }
+}
+
+}  // namespace ffsim

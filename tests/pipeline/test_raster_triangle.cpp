@@ -1,0 +1,127 @@
+// Rasterization: pixel-centre rule, top-left tie rule, sub-pixel snapping
+// (pipeline/raster/triangle.h). Every expectation is derived by hand from the
+// rule "centre inside, or on a left or top edge" on the 1/16-pixel grid.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "pipeline/raster/triangle.h"
+
+using namespace ffsim;
+
+namespace {
+
+constexpr int S = 4;
+
+SnappedVertex sv(double x, double y) { return {snap_coordinate(x, S), snap_coordinate(y, S)}; }
+
+std::map<std::pair<int, int>, int> cover(const std::array<SnappedVertex, 3>& t, std::map<std::pair<int, int>, int> acc = {}) {
+  rasterize_triangle(t, S, -100, -100, 100, 100, [&](const TriangleCoverage& cov, const CoverageRun& run) {
+    for (std::size_t i = 0; i < run.weight.size(); ++i) {
+      ++acc[{run.x0 + static_cast<int>(i), run.y}];
+      const auto& w = run.weight[i];
+      CHECK(w[0] >= 0);
+      CHECK(w[1] >= 0);
+      CHECK(w[2] >= 0);
+      CHECK(w[0] + w[1] + w[2] == cov.area);  // barycentric numerators sum to the area
+    }
+  });
+  return acc;
+}
+
+}  // namespace
+
+TEST_CASE("raster: snapping rounds to the nearest 1/16 pixel, ties up") {
+  CHECK(snap_coordinate(1.03, 4) == 16);      // 16.48 -> 16
+  CHECK(snap_coordinate(1.03125, 4) == 17);   // 16.5 exactly -> 17 (half up)
+  CHECK(snap_coordinate(-1.03125, 4) == -16); // -16.5 -> -16 (half up)
+  CHECK(snap_coordinate(std::nan(""), 4) > kMaxSnapped);  // NaN is out of range: rejected
+}
+
+TEST_CASE("raster: a 2x2 square on integer corners covers exactly its four pixels") {
+  // Square (1,1)-(3,3): centres 1.5, 2.5 are strictly inside; 0.5 and 3.5 outside.
+  auto c = cover({sv(1, 1), sv(3, 1), sv(3, 3)});
+  c = cover({sv(1, 1), sv(3, 3), sv(1, 3)}, c);
+  CHECK(c.size() == 4);
+  for (int y = 1; y <= 2; ++y)
+    for (int x = 1; x <= 2; ++x) CHECK(c[{x, y}] == 1);
+}
+
+TEST_CASE("raster: centres on edges follow the left/top rule") {
+  // Square (0.5,0.5)-(2.5,2.5): centre columns 0.5 (left edge: in), 1.5, 2.5 (right
+  // edge: out); centre rows 0.5 (bottom edge: out), 1.5, 2.5 (top edge: in).
+  auto c = cover({sv(0.5, 0.5), sv(2.5, 0.5), sv(2.5, 2.5)});
+  c = cover({sv(0.5, 0.5), sv(2.5, 2.5), sv(0.5, 2.5)}, c);
+  std::set<std::pair<int, int>> got;
+  for (auto& [p, n] : c) {
+    CHECK(n == 1);  // the diagonal through centres (1.5,1.5) is shared: drawn once
+    got.insert(p);
+  }
+  const std::set<std::pair<int, int>> want{{0, 1}, {1, 1}, {0, 2}, {1, 2}};
+  CHECK(got == want);
+}
+
+TEST_CASE("raster: clockwise and counter-clockwise triangles cover the same pixels") {
+  const auto a = cover({sv(0.3, 0.2), sv(7.7, 1.9), sv(2.5, 6.5)});
+  const auto b = cover({sv(0.3, 0.2), sv(2.5, 6.5), sv(7.7, 1.9)});
+  CHECK(a == b);
+  CHECK(!a.empty());
+}
+
+TEST_CASE("raster: a fan around a point covers every pixel of the polygon exactly once") {
+  // 12 triangles around (8.5, 8.5), a pixel centre, with rim vertices on a circle of
+  // radius 6.3 (some rim vertices and edges pass through centres after snapping).
+  // Expected: no pixel twice; every pixel whose centre is strictly inside the rim
+  // polygon (tested independently with the float cross products) covered.
+  const double cx = 8.5, cy = 8.5;
+  std::vector<SnappedVertex> rim;
+  for (int i = 0; i < 12; ++i) {
+    const double a = 2 * 3.14159265358979323846 * i / 12;
+    rim.push_back(sv(cx + 6.3 * std::cos(a), cy + 6.3 * std::sin(a)));
+  }
+  std::map<std::pair<int, int>, int> c;
+  for (int i = 0; i < 12; ++i) c = cover({sv(cx, cy), rim[i], rim[(i + 1) % 12]}, c);
+  for (auto& [p, n] : c) CHECK_MESSAGE(n == 1, "pixel " << p.first << "," << p.second << " drawn " << n << " times");
+  int inside = 0;
+  for (int y = 0; y < 18; ++y)
+    for (int x = 0; x < 18; ++x) {
+      const double px = (x + 0.5) * 16, py = (y + 0.5) * 16;
+      bool strictly = true;
+      for (int i = 0; i < 12; ++i) {
+        const SnappedVertex &a = rim[i], &b = rim[(i + 1) % 12];
+        const double e = static_cast<double>(b.x - a.x) * (py - a.y) - static_cast<double>(b.y - a.y) * (px - a.x);
+        if (e <= 0) strictly = false;
+      }
+      if (strictly) {
+        ++inside;
+        CHECK_MESSAGE(c.count({x, y}) == 1, "missing pixel " << x << "," << y);
+      }
+    }
+  CHECK(inside > 100);  // pi * 6.3^2 ~ 125 pixels
+  // The centre pixel (8, 8) has its centre on all 12 spokes: exactly one owner.
+  CHECK(c[{8, 8}] == 1);
+}
+
+TEST_CASE("raster: degenerate and tiny triangles produce no fragments") {
+  CHECK(cover({sv(1, 1), sv(5, 5), sv(3, 3)}).empty());  // collinear: area 0
+  CHECK(cover({sv(2, 2), sv(2, 2), sv(2, 2)}).empty());  // a point
+  // A sliver between centres: (0.6,0.6)-(1.4,0.6)-(1,1.4) contains no centre x+0.5.
+  CHECK(cover({sv(0.6, 0.6), sv(1.4, 0.6), sv(1.0, 1.4)}).empty());
+  // Snapping: 0.51 -> 8/16 exactly, so the vertex (0.51,0.51) of this tiny triangle
+  // lands on the centre (0.5,0.5), which lies on its left edge: one fragment.
+  const auto c = cover({sv(0.51, 0.51), sv(0.9, 0.2), sv(0.9, 0.9)});
+  CHECK(c.size() == 1);
+}
+
+TEST_CASE("raster: fragments are clipped to the given window") {
+  const auto c = [&] {
+    std::map<std::pair<int, int>, int> acc;
+    rasterize_triangle({sv(-50, -50), sv(50, -50), sv(0, 50)}, S, 0, 0, 4, 3, [&](const TriangleCoverage&, const CoverageRun& r) {
+      for (std::size_t i = 0; i < r.weight.size(); ++i) ++acc[{r.x0 + static_cast<int>(i), r.y}];
+    });
+    return acc;
+  }();
+  CHECK(c.size() == 12);  // the 4x3 window lies fully inside the triangle
+}
