@@ -73,8 +73,18 @@ void fetch_texels(const ShadingState& st, const ShadingPlan& plan, const UnitTex
 Rgba texture_environments(const ShadingState& st, const ShadingPlan& plan, const Rgba& primary,
                           const Rgba& secondary, const UnitTexels& texels) {
   Rgba c = primary;
-  for (int u = 0; u < kShadeUnits; ++u)
-    if (plan.env[u]) c = texture_environment(st.units[u].env, c, primary, texels[u], st.color);
+  for (int u = 0; u < kShadeUnits; ++u) {
+    if (!plan.env[u]) continue;
+    if (plan.sample[u]) {
+      c = texture_environment(st.units[u].env, c, primary, texels[u], st.color);
+    } else {
+      // Not sampled: the environment reads no texel values, but the classic
+      // functions still branch on the texture's base format, which is state.
+      Texel t{};
+      t.base = st.units[u].texture->levels[static_cast<std::size_t>(st.units[u].texture->params.base_level)].base;
+      c = texture_environment(st.units[u].env, c, primary, t, st.color);
+    }
+  }
   if (plan.color_sum) c = color_sum(c, secondary, st.color);
   return c;
 }
