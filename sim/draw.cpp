@@ -126,8 +126,12 @@ void Context::draw_polygon(std::vector<ClipVertex> poly, std::size_t provoking, 
 
   const bool flat = shade_model_ == gl::FLAT;
   const bool shade = plan.any_texturing() || plan.color_sum;
-  // Window bounds relative to the viewport corner (pixel ownership, §4.1.1).
-  const int cx0 = -vx, cy0 = -vy, cx1 = fb_.width() - vx, cy1 = fb_.height() - vy;
+  // Window bounds relative to the viewport corner (pixel ownership, §4.1.1), in
+  // 64 bits: the viewport corner may be any int.
+  auto rel = [](int a, int origin) {
+    return static_cast<int>(std::clamp<std::int64_t>(std::int64_t{a} - origin, -(std::int64_t{1} << 30), std::int64_t{1} << 30));
+  };
+  const int cx0 = rel(0, vx), cy0 = rel(0, vy), cx1 = rel(fb_.width(), vx), cy1 = rel(fb_.height(), vy);
   for (std::size_t i = 1; i + 1 < wv.size(); ++i) {
     const std::array<const WindowVertex*, 3> tv{&wv[0], &wv[i], &wv[i + 1]};
     auto emit = [&](const TriangleCoverage& cov, const CoverageRun& run) {

@@ -168,3 +168,16 @@ TEST_CASE("raster position: window coordinates, validity, colour and texture coo
   ctx.rasterPos2(10, 10);  // on the boundary: inside
   CHECK(ctx.raster_pos().valid);
 }
+
+TEST_CASE("draw: a viewport far outside the window draws nothing and does not overflow") {
+  Context ctx(profile_named("geforce256"), 4, 4);
+  ctx.viewport(-2147483647 - 1, 2147483647 - 100, 16384, 16384);
+  ctx.begin(gl::QUADS);
+  ctx.vertex2(-1, -1);
+  ctx.vertex2(1, -1);
+  ctx.vertex2(1, 1);
+  ctx.vertex2(-1, 1);
+  ctx.end();
+  for (auto k : ctx.framebuffer().codes()) REQUIRE(k == 0);
+  CHECK(ctx.getError() == gl::NO_ERROR);
+}
