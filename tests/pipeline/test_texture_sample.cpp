@@ -176,3 +176,12 @@ TEST_CASE("texture: completeness") {
   TextureObject none;
   CHECK_FALSE(texture_complete(none, 2, kFixed));
 }
+
+TEST_CASE("texture: float32 profile filters in binary32 without quantisation") {
+  const SampleFormat f32{Arithmetic::Float32, 8};
+  TextureObject t = tex1d({0, 255}, gl::LINEAR, gl::CLAMP_TO_EDGE);
+  // u = 2·0.3f, α = u - 0.5f in binary32; the filtered value is (1 - α)·0 + α·1 = α.
+  const float alpha = 2.0f * 0.3f - 0.5f;
+  CHECK(sample_level(t, 0, 1, gl::LINEAR, 0.3, 0, f32).value[0] == static_cast<double>(alpha));
+  CHECK(static_cast<double>(alpha) != 0.1);  // differs from the binary64 value: the test can tell them apart
+}

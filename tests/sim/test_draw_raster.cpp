@@ -181,3 +181,30 @@ TEST_CASE("draw: a viewport far outside the window draws nothing and does not ov
   for (auto k : ctx.framebuffer().codes()) REQUIRE(k == 0);
   CHECK(ctx.getError() == gl::NO_ERROR);
 }
+
+TEST_CASE("draw: QUAD_STRIP assembles quads (2i, 2i+1, 2i+3, 2i+2) with the last pair's colour when flat") {
+  Context ctx(profile_named("geforce256"), 4, 2);
+  ortho_window(ctx);
+  ctx.shadeModel(gl::FLAT);
+  ctx.begin(gl::QUAD_STRIP);
+  ctx.color3(1, 0, 0);
+  ctx.vertex2(0, 0);
+  ctx.vertex2(0, 2);
+  ctx.color3(0, 1, 0);
+  ctx.vertex2(2, 0);
+  ctx.color3(0, 0, 1);
+  ctx.vertex2(2, 2);  // provoking vertex of quad 0 (GL121 Table 2.9: 2i + 2)
+  ctx.color3(1, 1, 0);
+  ctx.vertex2(4, 0);
+  ctx.color3(1, 1, 1);
+  ctx.vertex2(4, 2);  // provoking vertex of quad 1
+  ctx.end();
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 2; ++x) {
+      CHECK(code_at(ctx, x, y, 2) == 255);
+      CHECK(code_at(ctx, x, y, 0) == 0);
+      CHECK(code_at(ctx, x + 2, y, 0) == 255);
+      CHECK(code_at(ctx, x + 2, y, 1) == 255);
+      CHECK(code_at(ctx, x + 2, y, 2) == 255);
+    }
+}
