@@ -52,6 +52,7 @@ ShadingState Context::shading_state() {
   st.color = ColorFormat::from_profile(profile_);
   st.sample = SampleFormat::from_profile(profile_);
   st.color_sum = color_sum_;
+  st.unit_count = profile_.texture_units;
   for (int u = 0; u < profile_.texture_units; ++u) {
     const TextureUnitBinding& b = units_[u];
     ShadeUnit& su = st.units[u];

@@ -35,7 +35,7 @@ ShadingPlan plan_shading(const ShadingState& st) {
 
 std::string explain_shading(const ShadingState& st, const ShadingPlan& plan) {
   std::string out;
-  for (int u = 0; u < kShadeUnits; ++u) {
+  for (int u = 0; u < st.unit_count; ++u) {
     const ShadeUnit& su = st.units[u];
     out += "texture unit " + std::to_string(u) + ": ";
     if (su.texture == nullptr) {

@@ -35,7 +35,8 @@ struct ShadingState {
   ColorFormat color;
   SampleFormat sample;
   std::array<ShadeUnit, kShadeUnits> units{};
-  bool color_sum = false;  // COLOR_SUM enabled
+  int unit_count = kShadeUnits;  // MAX_TEXTURE_UNITS of the profile (units beyond stay disabled)
+  bool color_sum = false;        // COLOR_SUM enabled
 };
 
 struct ShadingPlan {

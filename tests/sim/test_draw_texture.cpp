@@ -312,3 +312,26 @@ TEST_CASE("draw: the planned shading path equals the full path on random texture
     }
   }
 }
+
+TEST_CASE("draw: the shading plan is reported before each draw") {
+  Context ctx(profile_named("geforce256"), 2, 2);
+  ortho_window(ctx);
+  set_level(ctx, gl::TEXTURE_2D, 0, BaseFormat::RGB, 1, 1, {10, 20, 30});
+  ctx.texParameteri(gl::TEXTURE_2D, gl::TEXTURE_MIN_FILTER, gl::NEAREST);
+  ctx.enable(gl::TEXTURE_2D);
+  ctx.activeTexture(gl::TEXTURE1);
+  ctx.bindTexture(gl::TEXTURE_2D, 5);
+  set_level(ctx, gl::TEXTURE_2D, 0, BaseFormat::RGBA, 1, 1, {1, 2, 3, 4});
+  ctx.texParameteri(gl::TEXTURE_2D, gl::TEXTURE_MIN_FILTER, gl::NEAREST);
+  ctx.enable(gl::TEXTURE_2D);
+  ctx.texEnvi(gl::TEXTURE_ENV, gl::TEXTURE_ENV_MODE, gl::REPLACE);
+  std::vector<std::string> log;
+  ctx.set_explain_callback([&](const std::string& s) { log.push_back(s); });
+  quad(ctx, 0, 0, 2, 2);
+  REQUIRE(log.size() == 1);
+  CHECK(log[0].find("texture unit 2") == std::string::npos);  // geforce256 has 2 units
+  CHECK(log[0].find("texture unit 0: skipped") != std::string::npos);
+  CHECK(log[0].find("texture unit 1: sample TEXTURE_2D") != std::string::npos);
+  CHECK(code_at(ctx, 0, 0, 0) == 1);  // unit 1 REPLACE with RGBA
+  CHECK(code_at(ctx, 0, 0, 3) == 4);
+}
