@@ -222,6 +222,9 @@ class Context {
   // combiners replace step 2 here and consume the same texels and colours.
   Rgba shade_fragment(const ShadingState& st, const ShadingPlan& plan, const Rgba& primary, const Rgba& secondary,
                       const UnitTexCoords& tc);
+  // Whether fragments need shade_fragment at all (otherwise the primary colour is
+  // the fragment colour). Register combiners make this true whenever enabled.
+  bool shading_active(const ShadingPlan& plan) const { return plan.any_texturing() || plan.color_sum; }
   GLenum shade_model() const { return shade_model_; }
   const std::array<int, 4>& viewport_box() const { return viewport_; }
   std::array<double, 2> depth_range() const { return {depth_near_, depth_far_}; }

@@ -6,8 +6,8 @@
 //   position's texture coordinates (s/q, t/q) at λ = 0, the texture
 //   environments run on the fragment's colour as primary colour, and the colour
 //   sum adds a zero secondary colour (spec-notes choice #12); then
-//   write_fragments. With no unit enabled the span goes to write_fragments
-//   unchanged.
+//   write_fragments. When nothing shades (shading_active false) the span goes
+//   to write_fragments unchanged.
 // - write_fragments (scissor, alpha, stencil, depth, blend, masks, GL121 §4.1):
 //   interim body until the per-fragment operations work replaces it; writes
 //   colour through the scissor box and the colour mask.
@@ -18,7 +18,7 @@ namespace ffsim {
 void Context::pixel_fragments(FragmentSpan& span) {
   const ShadingState st = shading_state();
   const ShadingPlan plan = shading_plan(st);
-  if (plan.any_texturing()) {
+  if (shading_active(plan)) {
     if (on_explain_) on_explain_(ffsim::explain_shading(st, plan));
     UnitTexCoords tc{};
     for (int u = 0; u < kMaxTextureUnits; ++u) {

@@ -126,7 +126,7 @@ void Context::draw_polygon(std::vector<ClipVertex> poly, std::size_t provoking, 
   }
 
   const bool flat = shade_model_ == gl::FLAT;
-  const bool shade = plan.any_texturing() || plan.color_sum;
+  const bool shade = shading_active(plan);
   // Window bounds relative to the viewport corner (pixel ownership, §4.1.1), in
   // 64 bits: the viewport corner may be any int.
   auto rel = [](int a, int origin) {
