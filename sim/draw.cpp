@@ -112,15 +112,12 @@ void Context::draw_polygon(std::vector<ClipVertex> poly, std::size_t provoking, 
     w.p.y = snap_coordinate((c.position.y * iw + 1) * hh, S);
     const double zw = depth_near_ + (depth_far_ - depth_near_) * ((c.position.z * iw + 1) / 2);
     if (has_depth) w.depth = unorm_from_double(zw, fb_.format().depth_bits);
-    for (int k = 0; k < 4; ++k) {
-      if (arith == Arithmetic::Fixed) {
-        w.color_code[k] = unorm_from_double(c.color[k], profile_.color_bits);
-        w.secondary_code[k] = unorm_from_double(c.secondary[k], profile_.color_bits);
-      } else {
-        w.color[k] = to_color_value(std::clamp(c.color[k], 0.0, 1.0), arith);
-        w.secondary[k] = to_color_value(std::clamp(c.secondary[k], 0.0, 1.0), arith);
-      }
-    }
+    // Vertex colours into the fragment colour format (§1.2 codes, or binary32/64).
+    const Rgba pc = rgba_from_values(c.color, st.color), sc = rgba_from_values(c.secondary, st.color);
+    w.color_code = pc.code;
+    w.secondary_code = sc.code;
+    w.color = pc.value;
+    w.secondary = sc.value;
     for (int u = 0; u < kMaxTextureUnits; ++u)
       w.tcw[u] = {c.texcoord[u].x * iw, c.texcoord[u].y * iw, c.texcoord[u].w * iw};
   }
