@@ -185,3 +185,18 @@ TEST_CASE("texture: float32 profile filters in binary32 without quantisation") {
   CHECK(sample_level(t, 0, 1, gl::LINEAR, 0.3, 0, f32).value[0] == static_cast<double>(alpha));
   CHECK(static_cast<double>(alpha) != 0.1);  // differs from the binary64 value: the test can tell them apart
 }
+
+TEST_CASE("texture: 2D CLAMP at a corner blends three border-colour texels") {
+  TextureObject t;
+  t.levels.push_back(image(BaseFormat::Luminance, 2, 2, {100, 100, 100, 100}));
+  t.params.min_filter = t.params.mag_filter = gl::LINEAR;
+  t.params.wrap_s = t.params.wrap_t = gl::CLAMP;
+  t.params.border_color = {1, 0, 0, 0};  // LUMINANCE takes R: code 255
+  // s = t = 0: i0 = j0 = -1 (border), a = b = 128, every weight 128·128 = 16384:
+  // (255·3·16384 + 100·16384 + 32768) >> 16 = (14172160 + 32768) >> 16 = 216 (216.25).
+  CHECK(sample_level(t, 0, 2, gl::LINEAR, 0, 0, kFixed).code[0] == 216);
+  t.params.wrap_t = gl::CLAMP_TO_EDGE;  // only the s side reaches the border: (255 + 100)/2 -> 178
+  CHECK(sample_level(t, 0, 2, gl::LINEAR, 0, 0, kFixed).code[0] == 178);
+  t.params.wrap_s = t.params.wrap_t = gl::REPEAT;  // wraps to the opposite texels: all 100
+  CHECK(sample_level(t, 0, 2, gl::LINEAR, 0, 0, kFixed).code[0] == 100);
+}
