@@ -21,8 +21,6 @@ namespace ffsim {
 
 namespace {
 
-__extension__ typedef __int128 i128;
-
 struct WindowVertex {
   SnappedVertex p;
   std::array<std::uint32_t, 4> color_code{}, secondary_code{};
@@ -33,12 +31,6 @@ struct WindowVertex {
 
 double to_color_value(double v, Arithmetic a) {
   return a == Arithmetic::Float32 ? static_cast<double>(static_cast<float>(v)) : v;
-}
-
-std::uint32_t interpolate_code(const std::array<std::int64_t, 3>& w, std::int64_t area, std::uint32_t k0,
-                               std::uint32_t k1, std::uint32_t k2) {
-  const i128 num = i128{w[0]} * k0 + i128{w[1]} * k1 + i128{w[2]} * k2;
-  return static_cast<std::uint32_t>((2 * num + area) / (2 * i128{area}));
 }
 
 // Whether λ can change the result: only when minification and magnification

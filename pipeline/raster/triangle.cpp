@@ -100,4 +100,11 @@ TriangleCoverage rasterize_triangle(const std::array<SnappedVertex, 3>& vin, int
   return cov;
 }
 
+std::uint32_t interpolate_code(const std::array<std::int64_t, 3>& w, std::int64_t area, std::uint32_t k0,
+                               std::uint32_t k1, std::uint32_t k2) {
+  __extension__ typedef __int128 i128;
+  const i128 num = i128{w[0]} * k0 + i128{w[1]} * k1 + i128{w[2]} * k2;
+  return static_cast<std::uint32_t>((2 * num + area) / (2 * i128{area}));
+}
+
 }  // namespace ffsim

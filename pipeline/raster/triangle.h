@@ -57,4 +57,10 @@ TriangleCoverage rasterize_triangle(const std::array<SnappedVertex, 3>& v, int s
                                     int clip_y0, int clip_x1, int clip_y1,
                                     const std::function<void(const TriangleCoverage&, const CoverageRun&)>& emit);
 
+// A code attribute (colour or depth) at a fragment: the exact barycentric value
+// Σ w_k·k_k / A rounded half up once, floor((2·Σ w_k·k_k + A) / 2A), in 128-bit
+// integers (weights < 2^61, codes < 2^32).
+std::uint32_t interpolate_code(const std::array<std::int64_t, 3>& w, std::int64_t area, std::uint32_t k0,
+                               std::uint32_t k1, std::uint32_t k2);
+
 }  // namespace ffsim

@@ -125,3 +125,14 @@ TEST_CASE("raster: fragments are clipped to the given window") {
   }();
   CHECK(c.size() == 12);  // the 4x3 window lies fully inside the triangle
 }
+
+TEST_CASE("raster: attribute codes are the exact barycentric value rounded half up once") {
+  // Weights (1, 1, 2) of A = 4: (1·10 + 1·11 + 2·12)/4 = 45/4 = 11.25 -> 11.
+  CHECK(interpolate_code({1, 1, 2}, 4, 10, 11, 12) == 11);
+  // A tie: (1·0 + 1·0 + 2·1)/4 = 0.5 -> 1 (half up).
+  CHECK(interpolate_code({1, 1, 2}, 4, 0, 0, 1) == 1);
+  // 24-bit depth codes with weights near the int64 limit: no overflow.
+  const std::int64_t big = std::int64_t{1} << 60;
+  CHECK(interpolate_code({big, big, 0}, 2 * big, 16777215, 0, 7) == 8388608);  // 8388607.5 -> 8388608
+  CHECK(interpolate_code({0, 0, big}, big, 1, 2, 16777215) == 16777215);
+}

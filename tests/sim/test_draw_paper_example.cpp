@@ -54,7 +54,7 @@ TEST_CASE("paper example drawn: squaring after interpolation gives 255, 0, 255 o
   CHECK(code_at(ctx, 3, 0, 0) == 255);  // texel 1's centre: (+1)² = 1
 }
 
-TEST_CASE("paper example drawn: the ideal profile gives exactly 1, 0, 1") {
+TEST_CASE("paper example drawn: the ideal profile gives 1, 2/65025, 1 (the squared R term is exactly 0)") {
   Context ctx(profile_named("ideal"), 4, 1);
   draw_example(ctx, 0, 255);
   // Ideal: filtered R = 0.5 exactly at the midpoint; G = B = 128/255 expand to 1/255 each,

@@ -108,7 +108,7 @@ TEST_CASE("draw: off-screen, degenerate and partial primitives") {
   CHECK(ctx.getError() == gl::NO_ERROR);
 }
 
-TEST_CASE("draw: viewport and depth range place fragments and depth") {
+TEST_CASE("draw: the viewport places fragments, depth range is clamped and stored") {
   Context ctx(profile_named("geforce256"), 16, 16);
   ctx.viewport(8, 8, 8, 8);
   ctx.depthRange(0.25, 0.75);
@@ -125,6 +125,8 @@ TEST_CASE("draw: viewport and depth range place fragments and depth") {
   CHECK(code_at(ctx, 7, 7, 0) == 0);
   CHECK(ctx.viewport_box() == std::array<int, 4>{8, 8, 8, 8});
   CHECK(ctx.depth_range() == std::array<double, 2>{0.25, 0.75});
+  ctx.depthRange(-1, 2);
+  CHECK(ctx.depth_range() == std::array<double, 2>{0, 1});
 }
 
 TEST_CASE("draw: GL errors leave state unchanged") {
