@@ -147,16 +147,28 @@ void Context::write_depth_fragments(int w, int h, const std::vector<double>& zv)
 }
 
 namespace {
-// Depth scale and bias (§3.6.5), then the clamp to [0,1] of final conversion, in T.
-template <class T>
-std::vector<double> depth_transfer(const std::vector<T>& d, const pixel::PixelTransferState& t) {
+// Depth scale and bias (§3.6.5), then the clamp to [0,1] of final conversion.
+// Always binary64: binary32 has 24 significant bits, so k / (2^24 - 1) of a 24-bit
+// depth code would not convert back to k (docs/numerics.md §7.6).
+std::vector<double> depth_transfer(const std::vector<double>& d, const pixel::PixelTransferState& t) {
   std::vector<double> out(d.size());
-  const T s = static_cast<T>(t.depth_scale), b = static_cast<T>(t.depth_bias);
   for (std::size_t i = 0; i < d.size(); ++i) {
-    const T prod = d[i] * s;
-    out[i] = static_cast<double>(pixel::clamp01(prod + b));
+    const double prod = d[i] * t.depth_scale;
+    out[i] = pixel::clamp01(prod + t.depth_bias);
   }
   return out;
+}
+// Depth codes of a framebuffer rectangle as k / (2^d - 1) in binary64; outside the window 0.
+std::vector<double> read_depth_rect(const Framebuffer& fb, int x, int y, int width, int height) {
+  std::vector<double> d(static_cast<std::size_t>(width) * height, 0.0);
+  const double dmax = static_cast<double>(fb.depth_max());
+  for (int j = 0; j < height; ++j)
+    for (int i = 0; i < width; ++i) {
+      const int fx = x + i, fy = y + j;
+      if (fx >= 0 && fy >= 0 && fx < fb.width() && fy < fb.height())
+        d[static_cast<std::size_t>(j) * width + i] = static_cast<double>(fb.depth()[fb.index(fx, fy)]) / dmax;
+    }
+  return d;
 }
 }  // namespace
 
@@ -167,7 +179,7 @@ void Context::draw_pixels(int width, int height, GLenum format, GLenum type, con
     write_stencil_rect(0, 0, width, height, pixel::unpack_indices(data, width, height, type, up));
   } else if (format == gl::DEPTH_COMPONENT) {
     write_depth_fragments(width, height,
-                          depth_transfer(pixel::unpack_depth<T>(data, width, height, type, up), pixel_transfer_));
+                          depth_transfer(pixel::unpack_depth<double>(data, width, height, type, up), pixel_transfer_));
   } else {
     emit_color_rect(transfer(pixel::unpack_rgba<T>(data, width, height, format, type, up), pixel::ImageDims::TwoD));
   }
@@ -226,13 +238,8 @@ void Context::read_pixels(int x, int y, int width, int height, GLenum format, GL
       }
     pixel::pack_indices(v, width, height, type, pk, data);
   } else if (format == gl::DEPTH_COMPONENT) {
-    std::vector<T> d(static_cast<std::size_t>(width) * height, T(0));
-    const T dmax = static_cast<T>(static_cast<double>(fb_.depth_max()));
-    for (int j = 0; j < height; ++j)
-      for (int i = 0; i < width; ++i)
-        if (inside(x + i, y + j))
-          d[static_cast<std::size_t>(j) * width + i] = static_cast<T>(fb_.depth()[fb_.index(x + i, y + j)]) / dmax;
-    pixel::pack_depth(depth_transfer(d, pixel_transfer_), width, height, type, pk, data);
+    pixel::pack_depth(depth_transfer(read_depth_rect(fb_, x, y, width, height), pixel_transfer_), width, height, type,
+                      pk, data);
   } else {
     pixel::pack_rgba(transfer(read_color_rect<T>(x, y, width, height), pixel::ImageDims::TwoD), format, type, pk,
                      data);
@@ -282,13 +289,7 @@ void Context::copy_pixels(int x, int y, int width, int height, GLenum type) {
         if (inside(x + i, y + j)) idx[static_cast<std::size_t>(j) * width + i] = fb_.stencil()[fb_.index(x + i, y + j)];
     write_stencil_rect(0, 0, width, height, idx);
   } else if (type == gl::DEPTH) {
-    std::vector<T> d(static_cast<std::size_t>(width) * height, T(0));
-    const T dmax = static_cast<T>(static_cast<double>(fb_.depth_max()));
-    for (int j = 0; j < height; ++j)
-      for (int i = 0; i < width; ++i)
-        if (inside(x + i, y + j))
-          d[static_cast<std::size_t>(j) * width + i] = static_cast<T>(fb_.depth()[fb_.index(x + i, y + j)]) / dmax;
-    write_depth_fragments(width, height, depth_transfer(d, pixel_transfer_));
+    write_depth_fragments(width, height, depth_transfer(read_depth_rect(fb_, x, y, width, height), pixel_transfer_));
   } else {
     emit_color_rect(transfer(read_color_rect<T>(x, y, width, height), pixel::ImageDims::TwoD));
   }

@@ -336,3 +336,23 @@ TEST_CASE("pixel DrawPixels under the ideal profile keeps binary64 values") {
   CHECK(v[2] == 1.0);  // clamped at final conversion
   CHECK(v[3] == 0.0);
 }
+
+TEST_CASE("pixel ReadPixels of depth and stencil: 24-bit depth codes survive, index arithmetic applies") {
+  Context ctx(geforce(), 2, 1);
+  ctx.framebuffer().depth()[1] = 0xABCDEF;
+  ctx.framebuffer().stencil()[1] = 5;
+  std::uint32_t d[1] = {0};
+  // k / (2^24 - 1) in binary64, then rnd(f (2^32 - 1)) exactly: an independent
+  // integer evaluation of the same rational, round half up.
+  ctx.readPixels(1, 0, 1, 1, gl::DEPTH_COMPONENT, gl::UNSIGNED_INT, d);
+  // (The binary64 quotient is within 2^-53 relative of the rational, far from a tie here.)
+  const std::uint64_t num = 0xABCDEFull * 0xFFFFFFFFull;  // < 2^56
+  const std::uint64_t want = (2 * num + 0xFFFFFF) / (2 * 0xFFFFFFull);
+  CHECK(d[0] == want);
+  ctx.pixelTransferi(gl::INDEX_SHIFT, 2);
+  ctx.pixelTransferi(gl::INDEX_OFFSET, 1);
+  std::uint8_t s[1] = {0};
+  ctx.readPixels(1, 0, 1, 1, gl::STENCIL_INDEX, gl::UNSIGNED_BYTE, s);
+  CHECK(s[0] == 5 * 4 + 1);
+  CHECK(ctx.getError() == gl::NO_ERROR);
+}
