@@ -18,6 +18,14 @@ namespace ffsim {
 
 using pixel::RgbaImage;
 
+namespace {
+// Rectangles beyond the framebuffer's pixel limit are refused with OUT_OF_MEMORY
+// (GL121 §2.5) instead of allocating gigabytes for a mistyped size.
+bool too_large(int width, int height) {
+  return static_cast<long long>(width) * height > kMaxFramebufferPixels;
+}
+}  // namespace
+
 void Context::group_extent(int n, int m, int& x0, int& x1, int& y0, int& y1) const {
   // GL121 §3.6.4 "Conversion to Fragments": group (n, m) covers the rectangle with
   // corners (xrp + zx n, yrp + zy m) and (xrp + zx (n+1), yrp + zy (m+1)); a pixel
@@ -64,8 +72,8 @@ void Context::emit_color_rect(const RgbaImage<T>& img) {
         int gx0, gx1, gy0, gy1;
         group_extent(n, m, gx0, gx1, gy0, gy1);
         const T* c = img.at(n, m);
-        for (int x = gx0; x < gx1; ++x) {
-          if (x < 0 || x >= fb_.width()) continue;  // pixel ownership: outside the window
+        // Pixel ownership: only window pixels get fragments.
+        for (int x = std::max(gx0, 0); x < std::min(gx1, fb_.width()); ++x) {
           if (!started) {
             span.x0 = x;
             started = true;
@@ -126,8 +134,7 @@ void Context::write_depth_fragments(int w, int h, const std::vector<double>& zv)
       for_columns(w, pixel_zoom_[0], [&](int n) {
         int gx0, gx1, gy0, gy1;
         group_extent(n, m, gx0, gx1, gy0, gy1);
-        for (int x = gx0; x < gx1; ++x) {
-          if (x < 0 || x >= fb_.width()) continue;
+        for (int x = std::max(gx0, 0); x < std::min(gx1, fb_.width()); ++x) {
           if (!started) {
             span.x0 = x;
             started = true;
@@ -211,6 +218,10 @@ void Context::drawPixels(int width, int height, GLenum format, GLenum type, cons
     error(gl::INVALID_OPERATION, fn, "DEPTH_COMPONENT with no depth buffer");
     return;
   }
+  if (too_large(width, height)) {
+    error(gl::OUT_OF_MEMORY, fn, "a " + std::to_string(width) + "x" + std::to_string(height) + " rectangle is too large");
+    return;
+  }
   if (width == 0 || height == 0) return;
   if (!data) {
     error(gl::INVALID_VALUE, fn, "no pixel data");
@@ -268,6 +279,10 @@ void Context::readPixels(int x, int y, int width, int height, GLenum format, GLe
     error(gl::INVALID_OPERATION, fn, "DEPTH_COMPONENT with no depth buffer");
     return;
   }
+  if (too_large(width, height)) {
+    error(gl::OUT_OF_MEMORY, fn, "a " + std::to_string(width) + "x" + std::to_string(height) + " rectangle is too large");
+    return;
+  }
   if (width == 0 || height == 0) return;
   if (!data) {
     error(gl::INVALID_VALUE, fn, "no destination");
@@ -311,6 +326,10 @@ void Context::copyPixels(int x, int y, int width, int height, GLenum type) {
   }
   if (type == gl::DEPTH && !fb_.has_depth()) {
     error(gl::INVALID_OPERATION, fn, "DEPTH with no depth buffer");
+    return;
+  }
+  if (too_large(width, height)) {
+    error(gl::OUT_OF_MEMORY, fn, "a " + std::to_string(width) + "x" + std::to_string(height) + " rectangle is too large");
     return;
   }
   if (profile_.arithmetic == Arithmetic::Float64) copy_pixels<double>(x, y, width, height, type);

@@ -356,3 +356,42 @@ TEST_CASE("pixel ReadPixels of depth and stencil: 24-bit depth codes survive, in
   CHECK(s[0] == 5 * 4 + 1);
   CHECK(ctx.getError() == gl::NO_ERROR);
 }
+
+TEST_CASE("pixel identity DrawPixels, CopyPixels and CopyTexImage keep all 256 codes of every component") {
+  Context ctx(geforce(), 256, 3);
+  std::vector<std::uint8_t> d(4 * 256);
+  for (int k = 0; k < 256; ++k) {  // each component runs through all codes in a different order
+    d[4 * k] = static_cast<std::uint8_t>(k);
+    d[4 * k + 1] = static_cast<std::uint8_t>(255 - k);
+    d[4 * k + 2] = static_cast<std::uint8_t>((k * 7) % 256);
+    d[4 * k + 3] = static_cast<std::uint8_t>((k + 128) % 256);
+  }
+  CHECK(ctx.transfer_plan(pixel::ImageDims::TwoD).empty());
+  ctx.drawPixels(256, 1, gl::RGBA, gl::UNSIGNED_BYTE, d.data());
+  ctx.raster_pos().y = 1;
+  ctx.copyPixels(0, 0, 256, 1, gl::COLOR);
+  ctx.copyTexImage1D(gl::TEXTURE_1D, 0, gl::RGBA8, 0, 1, 256, 0);
+  const TextureImage& t = ctx.bound_texture(0, gl::TEXTURE_1D).levels.at(0);
+  for (int k = 0; k < 256; ++k)
+    for (int c = 0; c < 4; ++c) {
+      CHECK(get(ctx, k, 0)[c] == d[4 * k + c]);
+      CHECK(get(ctx, k, 1)[c] == d[4 * k + c]);
+      CHECK(t.codes[4 * k + c] == d[4 * k + c]);
+    }
+  CHECK(ctx.getError() == gl::NO_ERROR);
+}
+
+TEST_CASE("pixel rectangles beyond the pixel limit are OUT_OF_MEMORY, huge zoom stays in the window") {
+  Context ctx(geforce(), 4, 4);
+  std::uint8_t px[4] = {1, 2, 3, 4};
+  ctx.drawPixels(1 << 20, 1 << 20, gl::RGBA, gl::UNSIGNED_BYTE, px);
+  CHECK(ctx.getError() == gl::OUT_OF_MEMORY);
+  ctx.copyPixels(0, 0, 1 << 20, 1 << 20, gl::COLOR);
+  CHECK(ctx.getError() == gl::OUT_OF_MEMORY);
+  ctx.pixelZoom(1e7, -1e7);  // one group covers the whole window (downwards from y = 4)
+  ctx.raster_pos().y = 4;
+  ctx.drawPixels(1, 1, gl::RGBA, gl::UNSIGNED_BYTE, px);
+  CHECK(get(ctx, 3, 0) == std::array<std::uint16_t, 4>{1, 2, 3, 4});
+  CHECK(get(ctx, 0, 3) == std::array<std::uint16_t, 4>{1, 2, 3, 4});
+  CHECK(ctx.getError() == gl::NO_ERROR);
+}
