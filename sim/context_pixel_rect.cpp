@@ -263,6 +263,10 @@ void Context::readPixels(int x, int y, int width, int height, GLenum format, GLe
     error(gl::INVALID_VALUE, fn, "width and height must not be negative");
     return;
   }
+  if (format == gl::COLOR_INDEX) {  // GL121 §4.3.2: colour indices from an RGBA buffer
+    error(gl::INVALID_OPERATION, fn, "COLOR_INDEX from an RGBA colour buffer");
+    return;
+  }
   if (pixel::color_format_components(format) == 0 && format != gl::STENCIL_INDEX && format != gl::DEPTH_COMPONENT) {
     error(gl::INVALID_ENUM, fn, gl::enum_name(format) + " is not a pixel format ffsim reads");
     return;

@@ -145,6 +145,8 @@ TEST_CASE("pixel GL errors: texture images, pixel rectangles") {
   CHECK(ctx.getError() == gl::INVALID_ENUM);
   ctx.readPixels(0, 0, 1, 1, gl::RGBA, gl::UNSIGNED_BYTE_3_3_2, d.data());
   CHECK(ctx.getError() == gl::INVALID_ENUM);
+  ctx.readPixels(0, 0, 1, 1, gl::COLOR_INDEX, gl::UNSIGNED_BYTE, d.data());
+  CHECK(ctx.getError() == gl::INVALID_OPERATION);
   ctx.copyPixels(0, 0, 1, 1, gl::RGBA);
   CHECK(ctx.getError() == gl::INVALID_ENUM);
   ctx.copyPixels(0, 0, -2, 1, gl::COLOR);
