@@ -209,6 +209,10 @@ class Context {
   // plan.str(transfer_inputs()).
   pixel::TransferInputs transfer_inputs() const;
   pixel::TransferPlan transfer_plan(pixel::ImageDims dims) const;
+  // Bytes a client image of this size, format and type occupies under the current
+  // UNPACK (pack = false) or PACK store modes: what a trace must supply or allocate
+  // for glTexImage*/glDrawPixels/glColorTable or glReadPixels. 0 for unknown enums.
+  std::size_t pixel_client_bytes(bool pack, int width, int height, GLenum format, GLenum type) const;
 
 
   // ==== [issue 4a] geometry, rasterization, texturing, texture environment ====

@@ -414,6 +414,14 @@ pixel::TransferPlan Context::transfer_plan(pixel::ImageDims dims) const {
   return pixel::plan_transfer(transfer_inputs(), dims);
 }
 
+std::size_t Context::pixel_client_bytes(bool pack, int width, int height, GLenum format, GLenum type) const {
+  const int n = format == gl::STENCIL_INDEX || format == gl::DEPTH_COMPONENT ? 1 : pixel::color_format_components(format);
+  const int s = pixel::type_size(type);
+  if (n == 0 || s == 0 || width <= 0 || height <= 0) return 0;
+  const pixel::PixelStoreModes& m = pack ? pixel_store_.pack : pixel_store_.unpack;
+  return pixel::client_layout(m, width, height, n, s).extent(width, height);
+}
+
 template <class T>
 RgbaImage<T> Context::read_color_rect(int x, int y, int w, int h) const {
   RgbaImage<T> img(std::max(w, 0), std::max(h, 0));

@@ -397,3 +397,48 @@ TEST_CASE("pixel rectangles beyond the pixel limit are OUT_OF_MEMORY, huge zoom 
   CHECK(get(ctx, 0, 3) == std::array<std::uint16_t, 4>{1, 2, 3, 4});
   CHECK(ctx.getError() == gl::NO_ERROR);
 }
+
+TEST_CASE("pixel TexImage1D with CONVOLUTION_1D: filter scale, border modes, post-convolution scale and bias") {
+  Context ctx(geforce(), 4, 4);
+  const float ones[3] = {1, 1, 1};
+  const double quarter[4] = {0.25, 0.25, 0.25, 0.25};
+  ctx.convolutionParameterfv(gl::CONVOLUTION_1D, gl::CONVOLUTION_FILTER_SCALE, quarter);
+  ctx.convolutionFilter1D(gl::CONVOLUTION_1D, gl::LUMINANCE, 3, gl::LUMINANCE, gl::FLOAT, ones);  // taps 1/4
+  const double border[4] = {0.8, 0.8, 0.8, 0.8};
+  ctx.convolutionParameterfv(gl::CONVOLUTION_1D, gl::CONVOLUTION_BORDER_COLOR, border);
+  ctx.convolutionParameteri(gl::CONVOLUTION_1D, gl::CONVOLUTION_BORDER_MODE, gl::CONSTANT_BORDER);
+  ctx.enable(gl::CONVOLUTION_1D);
+  ctx.pixelTransferf(gl::POST_CONVOLUTION_RED_SCALE, 2);
+  ctx.pixelTransferf(gl::POST_CONVOLUTION_RED_BIAS, -0.05);
+  const std::uint8_t row[4] = {0, 51, 102, 255};  // 0, 0.2, 0.4, 1
+  ctx.texImage1D(gl::TEXTURE_1D, 0, gl::LUMINANCE, 4, 0, gl::LUMINANCE, gl::UNSIGNED_BYTE, row);
+  CHECK(ctx.getError() == gl::NO_ERROR);
+  const TextureObject& t = ctx.bound_texture(0, gl::TEXTURE_1D);
+  // Hand derivation: sums (0.8+0+0.2)/4 = 0.25, (0+0.2+0.4)/4 = 0.15, (0.2+0.4+1)/4 = 0.4,
+  // (0.4+1+0.8)/4 = 0.55; then *2 - 0.05: 0.45, 0.25, 0.75, 1.05 -> codes 115 (114.75),
+  // 64 (63.75), 191 (191.25), 255 (clamped).
+  CHECK(t.levels.at(0).codes == std::vector<std::uint16_t>{115, 64, 191, 255});
+  // REPLICATE_BORDER: ends use the edge texels: (0+0+0.2)/4 = 0.05 -> 0.05 (12.75 -> 13);
+  // (0.4+1+1)/4 = 0.6 -> 1.15 -> 255.
+  ctx.convolutionParameteri(gl::CONVOLUTION_1D, gl::CONVOLUTION_BORDER_MODE, gl::REPLICATE_BORDER);
+  ctx.texImage1D(gl::TEXTURE_1D, 0, gl::LUMINANCE, 4, 0, gl::LUMINANCE, gl::UNSIGNED_BYTE, row);
+  CHECK(t.levels.at(0).codes == std::vector<std::uint16_t>{13, 64, 191, 255});
+  // REDUCE: 4 - 2 = 2 texels, a power of two: 0.15, 0.4 -> 0.25, 0.75.
+  ctx.convolutionParameteri(gl::CONVOLUTION_1D, gl::CONVOLUTION_BORDER_MODE, gl::REDUCE);
+  ctx.texImage1D(gl::TEXTURE_1D, 0, gl::LUMINANCE, 4, 0, gl::LUMINANCE, gl::UNSIGNED_BYTE, row);
+  CHECK(t.levels.at(0).width == 2);
+  CHECK(t.levels.at(0).codes == std::vector<std::uint16_t>{64, 191});
+  // 2D images do not use the 1D filter.
+  CHECK(ctx.transfer_plan(pixel::ImageDims::TwoD).empty());
+  CHECK(ctx.getError() == gl::NO_ERROR);
+}
+
+TEST_CASE("pixel client image sizes follow the store modes") {
+  Context ctx(geforce(), 2, 2);
+  CHECK(ctx.pixel_client_bytes(false, 3, 2, gl::RGB, gl::UNSIGNED_BYTE) == 12 + 9);  // rows padded to 4
+  ctx.pixelStorei(gl::PACK_ALIGNMENT, 1);
+  ctx.pixelStorei(gl::PACK_SKIP_ROWS, 1);
+  CHECK(ctx.pixel_client_bytes(true, 3, 2, gl::RGB, gl::UNSIGNED_BYTE) == 9 + 9 + 9);
+  CHECK(ctx.pixel_client_bytes(false, 2, 1, gl::DEPTH_COMPONENT, gl::FLOAT) == 8);
+  CHECK(ctx.pixel_client_bytes(false, 2, 1, gl::COLOR_INDEX, gl::FLOAT) == 0);
+}
