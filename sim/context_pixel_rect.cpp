@@ -36,7 +36,7 @@ void Context::group_extent(int n, int m, int& x0, int& x1, int& y0, int& y1) con
   const double ya = raster_pos_.y + zy * m, yb = raster_pos_.y + zy * (m + 1);
   const auto lo = [](double a, double b) { return std::ceil(std::min(a, b) - 0.5); };
   const auto hi = [](double a, double b) { return std::ceil(std::max(a, b) - 0.5); };
-  const auto to_int = [](double v) { return static_cast<int>(std::clamp(v, -1e9, 1e9)); };
+  const auto to_int = [](double v) { return std::isnan(v) ? 0 : static_cast<int>(std::clamp(v, -1e9, 1e9)); };
   x0 = to_int(lo(xa, xb));
   x1 = to_int(hi(xa, xb));
   y0 = to_int(lo(ya, yb));

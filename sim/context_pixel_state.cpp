@@ -18,6 +18,12 @@ using pixel::RgbaImage;
 
 namespace {
 bool is_pow2(long long v) { return v > 0 && (v & (v - 1)) == 0; }
+// Integer pixel-transfer parameters given as reals: rounded half up, limited to
+// [-limit, limit] (INDEX_SHIFT: 31, INDEX_OFFSET: 2e9), NaN -> 0.
+int round_int(double v, double limit) {
+  const double r = std::floor(v + 0.5);
+  return std::isnan(r) ? 0 : static_cast<int>(std::clamp(r, -limit, limit));
+}
 }  // namespace
 
 // ---- enables ---------------------------------------------------------------
@@ -101,8 +107,8 @@ void Context::pixelTransferf(GLenum pname, double v) {
   switch (pname) {
     case gl::MAP_COLOR: t.map_color = v != 0.0; return;
     case gl::MAP_STENCIL: t.map_stencil = v != 0.0; return;
-    case gl::INDEX_SHIFT: t.index_shift = static_cast<int>(std::clamp(std::floor(v + 0.5), -31.0, 31.0)); return;
-    case gl::INDEX_OFFSET: t.index_offset = static_cast<int>(std::clamp(std::floor(v + 0.5), -2e9, 2e9)); return;
+    case gl::INDEX_SHIFT: t.index_shift = round_int(v, 31); return;
+    case gl::INDEX_OFFSET: t.index_offset = round_int(v, 2e9); return;
     case gl::RED_SCALE: t.scale[0] = v; return;
     case gl::GREEN_SCALE: t.scale[1] = v; return;
     case gl::BLUE_SCALE: t.scale[2] = v; return;

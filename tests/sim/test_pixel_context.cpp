@@ -2,6 +2,7 @@
 // rectangles (placement, zoom, overlap), ReadPixels, texture images, stencil.
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -441,4 +442,17 @@ TEST_CASE("pixel client image sizes follow the store modes") {
   CHECK(ctx.pixel_client_bytes(true, 3, 2, gl::RGB, gl::UNSIGNED_BYTE) == 9 + 9 + 9);
   CHECK(ctx.pixel_client_bytes(false, 2, 1, gl::DEPTH_COMPONENT, gl::FLOAT) == 8);
   CHECK(ctx.pixel_client_bytes(false, 2, 1, gl::COLOR_INDEX, gl::FLOAT) == 0);
+}
+
+TEST_CASE("pixel NaN parameters do not reach integer conversions") {
+  Context ctx(geforce(), 2, 2);
+  ctx.pixelTransferf(gl::INDEX_SHIFT, std::nan(""));
+  ctx.pixelTransferf(gl::INDEX_OFFSET, 1e30);
+  CHECK(ctx.pixel_transfer().index_shift == 0);
+  CHECK(ctx.pixel_transfer().index_offset == 2000000000);
+  ctx.pixelZoom(std::nan(""), 1);
+  const std::uint8_t px[4] = {9, 9, 9, 9};
+  ctx.drawPixels(1, 1, gl::RGBA, gl::UNSIGNED_BYTE, px);  // the group covers nothing
+  CHECK(get(ctx, 0, 0)[0] == 0);
+  CHECK(ctx.getError() == gl::NO_ERROR);
 }
