@@ -456,3 +456,45 @@ TEST_CASE("pixel NaN parameters do not reach integer conversions") {
   CHECK(get(ctx, 0, 0)[0] == 0);
   CHECK(ctx.getError() == gl::NO_ERROR);
 }
+
+TEST_CASE("pixel GL errors: the remaining entry points, and CopyColorTable reads the framebuffer") {
+  Context ctx(geforce(), 4, 4);
+  const float f[16] = {0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f};
+  ctx.separableFilter2D(gl::CONVOLUTION_2D, gl::RGBA, 2, 2, gl::RGBA, gl::FLOAT, f, f);
+  CHECK(ctx.getError() == gl::INVALID_ENUM);
+  ctx.separableFilter2D(gl::SEPARABLE_2D, gl::RGBA, 2, 12, gl::RGBA, gl::FLOAT, f, f);
+  CHECK(ctx.getError() == gl::INVALID_VALUE);
+  CHECK(ctx.imaging().separable2d.width == 0);
+  ctx.separableFilter2D(gl::SEPARABLE_2D, gl::RGBA, 2, 2, gl::RGBA, gl::FLOAT, f, f);
+  CHECK(ctx.getError() == gl::NO_ERROR);
+  CHECK(ctx.imaging().separable2d.row.size() == 8);
+  const double v[4] = {1, 2, 3, 4};
+  ctx.convolutionParameterfv(gl::SEPARABLE_2D, gl::COLOR_TABLE_SCALE, v);
+  CHECK(ctx.getError() == gl::INVALID_ENUM);
+  ctx.convolutionParameterfv(gl::SEPARABLE_2D, gl::CONVOLUTION_BORDER_COLOR, v);
+  CHECK(ctx.imaging().separable2d.border_color == std::array<double, 4>{1, 2, 3, 4});
+  ctx.texImage1D(gl::TEXTURE_2D, 0, gl::RGBA, 4, 0, gl::RGBA, gl::FLOAT, f);
+  CHECK(ctx.getError() == gl::INVALID_ENUM);
+  ctx.texImage1D(gl::TEXTURE_1D, 0, gl::RGBA, 5, 0, gl::RGBA, gl::FLOAT, f);
+  CHECK(ctx.getError() == gl::INVALID_VALUE);
+  ctx.texSubImage1D(gl::TEXTURE_1D, 0, 0, 1, gl::RGBA, gl::FLOAT, f);
+  CHECK(ctx.getError() == gl::INVALID_OPERATION);
+  ctx.copyTexImage1D(gl::TEXTURE_1D, 0, gl::RGBA, 0, 0, 4, 3);
+  CHECK(ctx.getError() == gl::INVALID_VALUE);
+  ctx.copyTexSubImage1D(gl::TEXTURE_1D, 0, 0, 0, 0, 1);
+  CHECK(ctx.getError() == gl::INVALID_OPERATION);
+  ctx.copyTexSubImage2D(gl::TEXTURE_2D, 0, 0, 0, 0, 0, 1, 1);
+  CHECK(ctx.getError() == gl::INVALID_OPERATION);
+  ctx.texImage1D(gl::TEXTURE_1D, 0, gl::RGBA, 4, 0, gl::RGBA, gl::FLOAT, f);
+  ctx.copyTexSubImage1D(gl::TEXTURE_1D, 0, 2, 0, 0, 3);  // 2 + 3 > 4
+  CHECK(ctx.getError() == gl::INVALID_VALUE);
+  CHECK(ctx.bound_texture(0, gl::TEXTURE_1D).version == 1);
+  ctx.copyColorTable(gl::COLOR_TABLE, gl::RGB, 0, 0, 3);
+  CHECK(ctx.getError() == gl::INVALID_VALUE);
+  // CopyColorTable: framebuffer row 0 as table data, no transfer operations applied.
+  ctx.framebuffer().codes()[0] = 51;  // pixel (0,0) R = 0.2
+  ctx.pixelTransferf(gl::RED_SCALE, 4);  // must not apply to table data
+  ctx.copyColorTable(gl::COLOR_TABLE, gl::LUMINANCE, 0, 0, 2);
+  CHECK(ctx.getError() == gl::NO_ERROR);
+  CHECK(ctx.imaging().table(pixel::TableSlot::Color).entries == std::vector<double>{static_cast<float>(51) / 255.0f, 0.0});
+}
