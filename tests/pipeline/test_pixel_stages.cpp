@@ -400,3 +400,17 @@ TEST_CASE("pixel texture conversion: base formats pick components, sized widths,
   CHECK(t.values[1] == static_cast<double>(0.4f));
   CHECK(texture_storage_bits(InternalFormat{BaseFormat::RGB, 0}, *find_builtin_profile("rgba12")) == 12);
 }
+
+TEST_CASE("pixel table index is floor(x + 1/2) evaluated in the transfer precision") {
+  // c = 1/2 - 2^-25 (exact in binary32), W = 2: x = c. In binary32, x + 1/2 = 1 - 2^-25 is
+  // a tie between 1 - 2^-24 and 1 and rounds to even (1.0), so the index is 1; in
+  // binary64 the sum is exact and the index is 0 (docs/numerics.md §7.3).
+  const float c = 0.5f - 0x1p-25f;
+  CHECK(table_index<float>(c, 2) == 1);
+  CHECK(table_index<double>(static_cast<double>(c), 2) == 0);
+  // Exact half-steps round up: c = 1/2 with W = 2 gives index 1 in both.
+  CHECK(table_index<float>(0.5f, 2) == 1);
+  CHECK(table_index<double>(0.5, 2) == 1);
+  CHECK(table_index<float>(2.0f, 4096) == 4095);
+  CHECK(table_index<float>(-1.0f, 4096) == 0);
+}
