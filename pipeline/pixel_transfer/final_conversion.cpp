@@ -25,13 +25,21 @@ template <class T>
 void store_texels(const RgbaImage<T>& img, TextureImage& dst, int x0, int y0, const Profile& p) {
   const int nc = component_count(dst.base);
   const bool fixed = p.is_fixed();
+  // Per-component rounding width (mixed-width sized formats, formats.h).
+  int cbits[4] = {dst.bits, dst.bits, dst.bits, dst.bits};
+  if (const auto f = texture_internal_format(dst.internal_format); f && f->sized_bits == dst.bits)
+    for (int k = 0; k < 4; ++k)
+      if (f->component_bits[k] > 0) cbits[k] = f->component_bits[k];
   for (int y = 0; y < img.height; ++y)
     for (int x = 0; x < img.width; ++x) {
       const T* c = img.at(x, y);
       const std::size_t t = (static_cast<std::size_t>(y0 + y) * dst.width + (x0 + x)) * nc;
       for (int k = 0; k < nc; ++k) {
         const T v = c[rgba_component_for(dst.base, k)];
-        if (fixed) dst.codes[t + k] = final_code(v, dst.bits);
+        if (fixed)
+          dst.codes[t + k] = cbits[k] == dst.bits
+                                 ? final_code(v, dst.bits)
+                                 : static_cast<std::uint16_t>(unorm_convert(final_code(v, cbits[k]), cbits[k], dst.bits));
         else dst.values[t + k] = final_value(v, p.arithmetic);
       }
     }

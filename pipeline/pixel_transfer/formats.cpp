@@ -52,9 +52,9 @@ std::optional<InternalFormat> sized_or_base(GLenum f) {
     case gl::LUMINANCE16: return InternalFormat{B::Luminance, 16};
     case gl::LUMINANCE_ALPHA: return InternalFormat{B::LuminanceAlpha, 0};
     case gl::LUMINANCE4_ALPHA4: return InternalFormat{B::LuminanceAlpha, 4};
-    case gl::LUMINANCE6_ALPHA2: return InternalFormat{B::LuminanceAlpha, 6};
+    case gl::LUMINANCE6_ALPHA2: return InternalFormat{B::LuminanceAlpha, 6, {6, 2, 0, 0}};
     case gl::LUMINANCE8_ALPHA8: return InternalFormat{B::LuminanceAlpha, 8};
-    case gl::LUMINANCE12_ALPHA4: return InternalFormat{B::LuminanceAlpha, 12};
+    case gl::LUMINANCE12_ALPHA4: return InternalFormat{B::LuminanceAlpha, 12, {12, 4, 0, 0}};
     case gl::LUMINANCE12_ALPHA12: return InternalFormat{B::LuminanceAlpha, 12};
     case gl::LUMINANCE16_ALPHA16: return InternalFormat{B::LuminanceAlpha, 16};
     case gl::INTENSITY: return InternalFormat{B::Intensity, 0};
@@ -63,7 +63,7 @@ std::optional<InternalFormat> sized_or_base(GLenum f) {
     case gl::INTENSITY12: return InternalFormat{B::Intensity, 12};
     case gl::INTENSITY16: return InternalFormat{B::Intensity, 16};
     case gl::RGB: return InternalFormat{B::RGB, 0};
-    case gl::R3_G3_B2: return InternalFormat{B::RGB, 3};
+    case gl::R3_G3_B2: return InternalFormat{B::RGB, 6, {3, 3, 2, 0}};  // lcm(3, 2) = 6
     case gl::RGB4: return InternalFormat{B::RGB, 4};
     case gl::RGB5: return InternalFormat{B::RGB, 5};
     case gl::RGB8: return InternalFormat{B::RGB, 8};
@@ -73,9 +73,9 @@ std::optional<InternalFormat> sized_or_base(GLenum f) {
     case gl::RGBA: return InternalFormat{B::RGBA, 0};
     case gl::RGBA2: return InternalFormat{B::RGBA, 2};
     case gl::RGBA4: return InternalFormat{B::RGBA, 4};
-    case gl::RGB5_A1: return InternalFormat{B::RGBA, 5};
+    case gl::RGB5_A1: return InternalFormat{B::RGBA, 5, {5, 5, 5, 1}};
     case gl::RGBA8: return InternalFormat{B::RGBA, 8};
-    case gl::RGB10_A2: return InternalFormat{B::RGBA, 10};
+    case gl::RGB10_A2: return InternalFormat{B::RGBA, 10, {10, 10, 10, 2}};
     case gl::RGBA12: return InternalFormat{B::RGBA, 12};
     case gl::RGBA16: return InternalFormat{B::RGBA, 16};
     default: return std::nullopt;

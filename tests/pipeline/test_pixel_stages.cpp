@@ -414,3 +414,21 @@ TEST_CASE("pixel table index is floor(x + 1/2) evaluated in the transfer precisi
   CHECK(table_index<float>(2.0f, 4096) == 4095);
   CHECK(table_index<float>(-1.0f, 4096) == 0);
 }
+
+TEST_CASE("pixel mixed-width sized texture formats round each component at its own width") {
+  Profile p;
+  RgbaImage<float> img = one_pixel<float>(0.5f, 0.2f, 0.6f, 0.6f);
+  // RGB5_A1: storage 5 bits; R = rnd(15.5) = 16, G = rnd(6.2) = 6, B = rnd(18.6) = 19;
+  // A rounds at 1 bit (rnd(0.6) = 1) and is stored as 31 (1 * 31/1, exact).
+  TextureImage t = make_texture_image(img, gl::RGB5_A1, *texture_internal_format(gl::RGB5_A1), 0, p);
+  CHECK(t.bits == 5);
+  CHECK(t.codes == std::vector<std::uint16_t>{16, 6, 19, 31});
+  // R3_G3_B2: storage lcm(3, 2) = 6 bits; R = rnd(3.5) = 4 -> 4 * 9 = 36; G = rnd(1.4) = 1 -> 9;
+  // B = rnd(0.6 * 3 = 1.8) = 2 -> 2 * 21 = 42.
+  t = make_texture_image(img, gl::R3_G3_B2, *texture_internal_format(gl::R3_G3_B2), 0, p);
+  CHECK(t.bits == 6);
+  CHECK(t.codes == std::vector<std::uint16_t>{36, 9, 42});
+  // Uniform sized formats are unaffected: RGBA4 of 0.6 = rnd(9) = 9.
+  t = make_texture_image(img, gl::RGBA4, *texture_internal_format(gl::RGBA4), 0, p);
+  CHECK(t.codes[3] == 9);
+}
