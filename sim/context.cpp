@@ -46,6 +46,12 @@ bool Context::set_capability(GLenum cap, bool on, const char* function) {
   switch (cap) {
     case gl::SCISSOR_TEST: scissor_.enabled = on; return true;
     // ==== [issue 3] capabilities ====
+    case gl::COLOR_TABLE:
+    case gl::POST_CONVOLUTION_COLOR_TABLE:
+    case gl::POST_COLOR_MATRIX_COLOR_TABLE:
+    case gl::CONVOLUTION_1D:
+    case gl::CONVOLUTION_2D:
+    case gl::SEPARABLE_2D: return pixel_capability(cap, on);
 
 
     // ==== [issue 4a] capabilities ====
@@ -71,6 +77,12 @@ bool Context::isEnabled(GLenum cap) {
   switch (cap) {
     case gl::SCISSOR_TEST: return scissor_.enabled;
     // ==== [issue 3] capabilities ====
+    case gl::COLOR_TABLE:
+    case gl::POST_CONVOLUTION_COLOR_TABLE:
+    case gl::POST_COLOR_MATRIX_COLOR_TABLE:
+    case gl::CONVOLUTION_1D:
+    case gl::CONVOLUTION_2D:
+    case gl::SEPARABLE_2D: return pixel_is_enabled(cap) == 1;
 
 
     // ==== [issue 4a] capabilities ====

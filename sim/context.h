@@ -24,6 +24,9 @@
 #include "pipeline/geometry/matrix_stack.h"
 #include "pipeline/gl/enums.h"
 #include "pipeline/number/profile.h"
+#include "pipeline/pixel_transfer/pixel_image.h"
+#include "pipeline/pixel_transfer/pixel_state.h"
+#include "pipeline/pixel_transfer/transfer_plan.h"
 #include "pipeline/texenv/shading.h"
 #include "pipeline/texture/texture_object.h"
 #include "sim/framebuffer.h"
@@ -163,6 +166,55 @@ class Context {
   // work on different areas merges without conflicts.
 
   // ==== [issue 3] pixel transfer and pixel rectangles: entry points ====
+  // sim/context_pixel_state.cpp (GL121 §3.6.1-3.6.3, imaging subset)
+  void pixelStorei(GLenum pname, std::int64_t param);
+  void pixelStoref(GLenum pname, double param);
+  void pixelTransferf(GLenum pname, double param);
+  void pixelTransferi(GLenum pname, std::int64_t param);
+  void pixelMapfv(GLenum map, int mapsize, const double* values);
+  void pixelZoom(double xfactor, double yfactor);
+  void colorTable(GLenum target, GLenum internalformat, int width, GLenum format, GLenum type, const void* data);
+  void colorTableParameterfv(GLenum target, GLenum pname, const double params[4]);
+  void copyColorTable(GLenum target, GLenum internalformat, int x, int y, int width);
+  void convolutionFilter1D(GLenum target, GLenum internalformat, int width, GLenum format, GLenum type,
+                           const void* data);
+  void convolutionFilter2D(GLenum target, GLenum internalformat, int width, int height, GLenum format,
+                           GLenum type, const void* data);
+  void separableFilter2D(GLenum target, GLenum internalformat, int width, int height, GLenum format,
+                         GLenum type, const void* row, const void* column);
+  void convolutionParameteri(GLenum target, GLenum pname, std::int64_t param);
+  void convolutionParameterfv(GLenum target, GLenum pname, const double params[4]);
+  // sim/context_pixel_texture.cpp (GL121 §3.8.1-3.8.2)
+  void texImage1D(GLenum target, int level, GLenum internalformat, int width, int border, GLenum format,
+                  GLenum type, const void* data);
+  void texImage2D(GLenum target, int level, GLenum internalformat, int width, int height, int border,
+                  GLenum format, GLenum type, const void* data);
+  void texSubImage1D(GLenum target, int level, int xoffset, int width, GLenum format, GLenum type,
+                     const void* data);
+  void texSubImage2D(GLenum target, int level, int xoffset, int yoffset, int width, int height, GLenum format,
+                     GLenum type, const void* data);
+  void copyTexImage1D(GLenum target, int level, GLenum internalformat, int x, int y, int width, int border);
+  void copyTexImage2D(GLenum target, int level, GLenum internalformat, int x, int y, int width, int height,
+                      int border);
+  void copyTexSubImage1D(GLenum target, int level, int xoffset, int x, int y, int width);
+  void copyTexSubImage2D(GLenum target, int level, int xoffset, int yoffset, int x, int y, int width, int height);
+  // sim/context_pixel_rect.cpp (GL121 §3.6.4, §4.3.2, §4.3.3)
+  void drawPixels(int width, int height, GLenum format, GLenum type, const void* data);
+  void readPixels(int x, int y, int width, int height, GLenum format, GLenum type, void* data);
+  void copyPixels(int x, int y, int width, int height, GLenum type);
+
+  const pixel::PixelStoreState& pixel_store() const { return pixel_store_; }
+  const pixel::PixelTransferState& pixel_transfer() const { return pixel_transfer_; }
+  const pixel::ImagingState& imaging() const { return imaging_; }
+  std::array<double, 2> pixel_zoom() const { return pixel_zoom_; }
+  // The transfer plan the current state gives for a 1D or 2D image, printable with
+  // plan.str(transfer_inputs()).
+  pixel::TransferInputs transfer_inputs() const;
+  pixel::TransferPlan transfer_plan(pixel::ImageDims dims) const;
+  // Bytes a client image of this size, format and type occupies under the current
+  // UNPACK (pack = false) or PACK store modes: what a trace must supply or allocate
+  // for glTexImage*/glDrawPixels/glColorTable or glReadPixels. 0 for unknown enums.
+  std::size_t pixel_client_bytes(bool pack, int width, int height, GLenum format, GLenum type) const;
 
 
   // ==== [issue 4a] geometry, rasterization, texturing, texture environment ====
@@ -270,6 +322,45 @@ class Context {
   // Area state, below per-area markers (see the public section).
 
   // ==== [issue 3] state ====
+  pixel::PixelStoreState pixel_store_;
+  pixel::PixelTransferState pixel_transfer_;
+  pixel::ImagingState imaging_;
+  std::array<double, 2> pixel_zoom_{1.0, 1.0};
+  // Helpers of the pixel path (sim/context_pixel_*.cpp).
+  bool pixel_capability(GLenum cap, bool on);
+  int pixel_is_enabled(GLenum cap) const;  // -1: not a pixel-path capability
+  pixel::ConvolutionFilter* convolution_target(GLenum target);
+  // Framebuffer colour (x, y, w, h) as RGBA groups in the evaluation precision,
+  // pixels outside the window read as 0 (their values are undefined, GL121 §4.3.2).
+  template <class T>
+  pixel::RgbaImage<T> read_color_rect(int x, int y, int w, int h) const;
+  template <class T>
+  pixel::RgbaImage<T> transfer(pixel::RgbaImage<T> img, pixel::ImageDims dims) const;
+  template <class T>
+  void emit_color_rect(const pixel::RgbaImage<T>& img);
+  template <class T>
+  bool tex_image(const char* fn, int dims, GLenum target, int level, GLenum internalformat, int width, int height,
+                 int border, GLenum format, GLenum type, const void* data, const int* copy_xy);
+  template <class T>
+  bool tex_sub_image(const char* fn, int dims, GLenum target, int level, int xoffset, int yoffset, int width,
+                     int height, GLenum format, GLenum type, const void* data, const int* copy_xy);
+  template <class T>
+  void draw_pixels(int width, int height, GLenum format, GLenum type, const void* data);
+  template <class T>
+  void read_pixels(int x, int y, int width, int height, GLenum format, GLenum type, void* data);
+  template <class T>
+  void copy_pixels(int x, int y, int width, int height, GLenum type);
+  template <class T>
+  void color_table(const char* fn, GLenum target, GLenum internalformat, int width, GLenum format, GLenum type,
+                   const void* data, const int* copy_xy);
+  template <class T>
+  void convolution_filter(const char* fn, pixel::FilterKind kind, GLenum target, GLenum internalformat, int width,
+                          int height, GLenum format, GLenum type, const void* data, const void* column);
+  void write_stencil_rect(int x0, int y0, int w, int h, const std::vector<std::int64_t>& idx);
+  void write_depth_fragments(int w, int h, const std::vector<double>& z);
+  // Fragment rectangle of group (n, m) under the current raster position and zoom
+  // (GL121 §3.6.4 "Conversion to Fragments"): columns [x0, x1), rows [y0, y1).
+  void group_extent(int n, int m, int& x0, int& x1, int& y0, int& y1) const;
 
 
   // ==== [issue 4a] state ====

@@ -1,0 +1,343 @@
+// Pixel rectangles: glDrawPixels, glReadPixels, glCopyPixels (GL121 §3.6.4,
+// §4.3.2, §4.3.3). Colour goes through the transfer plan, then final conversion
+// and fragment generation at the raster position with pixel zoom; the fragments
+// go to pixel_fragments (texturing with the raster texture coordinates and the
+// per-fragment operations, owned by other areas). Stencil rectangles are written
+// directly through the scissor box and the stencil write mask (§4.3.1, §3.6.4).
+#include <algorithm>
+#include <cmath>
+
+#include "pipeline/gl/enum_names.h"
+#include "pipeline/number/unorm.h"
+#include "pipeline/pixel_transfer/final_conversion.h"
+#include "pipeline/pixel_transfer/formats.h"
+#include "pipeline/pixel_transfer/unpack.h"
+#include "sim/context.h"
+
+namespace ffsim {
+
+using pixel::RgbaImage;
+
+namespace {
+// Rectangles beyond the framebuffer's pixel limit are refused with OUT_OF_MEMORY
+// (GL121 §2.5) instead of allocating gigabytes for a mistyped size.
+bool too_large(int width, int height) {
+  return static_cast<long long>(width) * height > kMaxFramebufferPixels;
+}
+}  // namespace
+
+void Context::group_extent(int n, int m, int& x0, int& x1, int& y0, int& y1) const {
+  // GL121 §3.6.4 "Conversion to Fragments": group (n, m) covers the rectangle with
+  // corners (xrp + zx n, yrp + zy m) and (xrp + zx (n+1), yrp + zy (m+1)); a pixel
+  // belongs to it when its centre lies inside or on the bottom/left edge:
+  // x + 1/2 in [lo, hi)  <=>  x in [ceil(lo - 1/2), ceil(hi - 1/2)).
+  const double zx = pixel_zoom_[0], zy = pixel_zoom_[1];
+  const double xa = raster_pos_.x + zx * n, xb = raster_pos_.x + zx * (n + 1);
+  const double ya = raster_pos_.y + zy * m, yb = raster_pos_.y + zy * (m + 1);
+  const auto lo = [](double a, double b) { return std::ceil(std::min(a, b) - 0.5); };
+  const auto hi = [](double a, double b) { return std::ceil(std::max(a, b) - 0.5); };
+  const auto to_int = [](double v) { return std::isnan(v) ? 0 : static_cast<int>(std::clamp(v, -1e9, 1e9)); };
+  x0 = to_int(lo(xa, xb));
+  x1 = to_int(hi(xa, xb));
+  y0 = to_int(lo(ya, yb));
+  y1 = to_int(hi(ya, yb));
+}
+
+namespace {
+// Iterate the columns of an image in increasing window x (negative zoom reverses).
+template <class F>
+void for_columns(int width, double zx, F f) {
+  if (zx >= 0)
+    for (int n = 0; n < width; ++n) f(n);
+  else
+    for (int n = width - 1; n >= 0; --n) f(n);
+}
+}  // namespace
+
+template <class T>
+void Context::emit_color_rect(const RgbaImage<T>& img) {
+  if (!raster_pos_.valid || img.empty()) return;  // §3.6.4: invalid raster position -> nothing
+  const bool fixed = profile_.is_fixed();
+  const int bits = fb_.format().color_bits;
+  const bool has_depth = fb_.has_depth();
+  const std::uint32_t z = has_depth ? pixel::pack_unsigned(raster_pos_.z, fb_.format().depth_bits) : 0;
+  for (int m = 0; m < img.height; ++m) {
+    int x0, x1, y0, y1;
+    group_extent(0, m, x0, x1, y0, y1);
+    for (int y = std::max(y0, 0); y < std::min(y1, fb_.height()); ++y) {
+      FragmentSpan span;
+      span.y = y;
+      bool started = false;
+      for_columns(img.width, pixel_zoom_[0], [&](int n) {
+        int gx0, gx1, gy0, gy1;
+        group_extent(n, m, gx0, gx1, gy0, gy1);
+        const T* c = img.at(n, m);
+        // Pixel ownership: only window pixels get fragments.
+        for (int x = std::max(gx0, 0); x < std::min(gx1, fb_.width()); ++x) {
+          if (!started) {
+            span.x0 = x;
+            started = true;
+          }
+          for (int k = 0; k < 4; ++k) {
+            if (fixed) span.codes.push_back(pixel::final_code(c[k], bits));
+            else span.values.push_back(pixel::final_value(c[k], profile_.arithmetic));
+          }
+          if (has_depth) span.depth.push_back(z);
+          ++span.count;
+        }
+      });
+      if (span.count > 0) pixel_fragments(span);
+    }
+  }
+}
+
+void Context::write_stencil_rect(int, int, int w, int h, const std::vector<std::int64_t>& idx) {
+  // Index arithmetic (§3.6.5 "Arithmetic on Indices"): shift, offset, MAP_STENCIL,
+  // then the value is masked to the s stencil bits and written through the
+  // scissor box and StencilMask (§4.3.1); no other fragment operation applies.
+  if (!raster_pos_.valid || !fb_.has_stencil()) return;
+  const std::uint32_t smax = fb_.stencil_max();
+  const std::uint32_t wmask = masks_.stencil & smax;
+  const Rect r = write_rect();
+  const pixel::PixelTransferState& t = pixel_transfer_;
+  for (int m = 0; m < h; ++m)
+    for (int n = 0; n < w; ++n) {
+      std::int64_t v = idx[static_cast<std::size_t>(m) * w + n];
+      v = t.index_shift >= 0 ? v * (std::int64_t{1} << t.index_shift) : v >> -t.index_shift;
+      v += t.index_offset;
+      if (t.map_stencil) v = t.stencil_map[static_cast<std::size_t>(v & static_cast<std::int64_t>(t.stencil_map.size() - 1))];
+      const std::uint32_t s = static_cast<std::uint32_t>(v) & smax;
+      int x0, x1, y0, y1;
+      group_extent(n, m, x0, x1, y0, y1);
+      for (int y = std::max(y0, r.y); y < std::min(y1, r.y + r.height); ++y)
+        for (int x = std::max(x0, r.x); x < std::min(x1, r.x + r.width); ++x) {
+          std::uint8_t& d = fb_.stencil()[fb_.index(x, y)];
+          d = static_cast<std::uint8_t>((d & ~wmask) | (s & wmask));
+        }
+    }
+}
+
+void Context::write_depth_fragments(int w, int h, const std::vector<double>& zv) {
+  // DEPTH_COMPONENT rectangles: the depth values replace z; colour comes from the
+  // current raster colour (§3.6.4); the fragments take the usual per-fragment path.
+  if (!raster_pos_.valid) return;
+  const bool fixed = profile_.is_fixed();
+  const int bits = fb_.format().color_bits;
+  const int dbits = fb_.format().depth_bits;
+  for (int m = 0; m < h; ++m) {
+    int x0, x1, y0, y1;
+    group_extent(0, m, x0, x1, y0, y1);
+    for (int y = std::max(y0, 0); y < std::min(y1, fb_.height()); ++y) {
+      FragmentSpan span;
+      span.y = y;
+      bool started = false;
+      for_columns(w, pixel_zoom_[0], [&](int n) {
+        int gx0, gx1, gy0, gy1;
+        group_extent(n, m, gx0, gx1, gy0, gy1);
+        for (int x = std::max(gx0, 0); x < std::min(gx1, fb_.width()); ++x) {
+          if (!started) {
+            span.x0 = x;
+            started = true;
+          }
+          for (int k = 0; k < 4; ++k) {
+            const double c = raster_pos_.color[k];
+            if (fixed) span.codes.push_back(static_cast<std::uint16_t>(unorm_from_double(c, bits)));
+            else span.values.push_back(pixel::final_value(c, profile_.arithmetic));
+          }
+          span.depth.push_back(pixel::pack_unsigned(zv[static_cast<std::size_t>(m) * w + n], dbits));
+          ++span.count;
+        }
+      });
+      if (span.count > 0) pixel_fragments(span);
+    }
+  }
+}
+
+namespace {
+// Depth scale and bias (§3.6.5), then the clamp to [0,1] of final conversion.
+// Always binary64: binary32 has 24 significant bits, so k / (2^24 - 1) of a 24-bit
+// depth code would not convert back to k (docs/numerics.md §7.6).
+std::vector<double> depth_transfer(const std::vector<double>& d, const pixel::PixelTransferState& t) {
+  std::vector<double> out(d.size());
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    const double prod = d[i] * t.depth_scale;
+    out[i] = pixel::clamp01(prod + t.depth_bias);
+  }
+  return out;
+}
+// Depth codes of a framebuffer rectangle as k / (2^d - 1) in binary64; outside the window 0.
+std::vector<double> read_depth_rect(const Framebuffer& fb, int x, int y, int width, int height) {
+  std::vector<double> d(static_cast<std::size_t>(width) * height, 0.0);
+  const double dmax = static_cast<double>(fb.depth_max());
+  for (int j = 0; j < height; ++j)
+    for (int i = 0; i < width; ++i) {
+      const int fx = x + i, fy = y + j;
+      if (fx >= 0 && fy >= 0 && fx < fb.width() && fy < fb.height())
+        d[static_cast<std::size_t>(j) * width + i] = static_cast<double>(fb.depth()[fb.index(fx, fy)]) / dmax;
+    }
+  return d;
+}
+}  // namespace
+
+template <class T>
+void Context::draw_pixels(int width, int height, GLenum format, GLenum type, const void* data) {
+  const auto& up = pixel_store_.unpack;
+  if (format == gl::STENCIL_INDEX) {
+    write_stencil_rect(0, 0, width, height, pixel::unpack_indices(data, width, height, type, up));
+  } else if (format == gl::DEPTH_COMPONENT) {
+    write_depth_fragments(width, height,
+                          depth_transfer(pixel::unpack_depth<double>(data, width, height, type, up), pixel_transfer_));
+  } else {
+    emit_color_rect(transfer(pixel::unpack_rgba<T>(data, width, height, format, type, up), pixel::ImageDims::TwoD));
+  }
+}
+
+void Context::drawPixels(int width, int height, GLenum format, GLenum type, const void* data) {
+  static const char* fn = "glDrawPixels";
+  if (width < 0 || height < 0) {
+    error(gl::INVALID_VALUE, fn, "width and height must not be negative");
+    return;
+  }
+  if (pixel::color_format_components(format) == 0 && format != gl::STENCIL_INDEX && format != gl::DEPTH_COMPONENT) {
+    error(gl::INVALID_ENUM, fn, gl::enum_name(format) + (format == gl::COLOR_INDEX
+                                                            ? std::string(" is not supported by ffsim (no colour-index path)")
+                                                            : std::string(" is not a pixel format")));
+    return;
+  }
+  if (pixel::type_size(type) == 0) {
+    error(gl::INVALID_ENUM, fn, gl::enum_name(type) + (pixel::is_unsupported_gl_type(type)
+                                                          ? std::string(" (packed or bitmap) is not supported by ffsim")
+                                                          : std::string(" is not a pixel type")));
+    return;
+  }
+  if (format == gl::STENCIL_INDEX && !fb_.has_stencil()) {
+    error(gl::INVALID_OPERATION, fn, "STENCIL_INDEX with no stencil buffer");
+    return;
+  }
+  if (format == gl::DEPTH_COMPONENT && !fb_.has_depth()) {
+    error(gl::INVALID_OPERATION, fn, "DEPTH_COMPONENT with no depth buffer");
+    return;
+  }
+  if (too_large(width, height)) {
+    error(gl::OUT_OF_MEMORY, fn, "a " + std::to_string(width) + "x" + std::to_string(height) + " rectangle is too large");
+    return;
+  }
+  if (width == 0 || height == 0) return;
+  if (!data) {
+    error(gl::INVALID_VALUE, fn, "no pixel data");
+    return;
+  }
+  if (profile_.arithmetic == Arithmetic::Float64) draw_pixels<double>(width, height, format, type, data);
+  else draw_pixels<float>(width, height, format, type, data);
+}
+
+template <class T>
+void Context::read_pixels(int x, int y, int width, int height, GLenum format, GLenum type, void* data) {
+  const auto& pk = pixel_store_.pack;
+  const auto inside = [&](int fx, int fy) { return fx >= 0 && fy >= 0 && fx < fb_.width() && fy < fb_.height(); };
+  if (format == gl::STENCIL_INDEX) {
+    const pixel::PixelTransferState& t = pixel_transfer_;
+    std::vector<std::uint32_t> v(static_cast<std::size_t>(width) * height, 0);
+    for (int j = 0; j < height; ++j)
+      for (int i = 0; i < width; ++i) {
+        if (!inside(x + i, y + j)) continue;
+        std::int64_t s = fb_.stencil()[fb_.index(x + i, y + j)];
+        s = t.index_shift >= 0 ? s * (std::int64_t{1} << t.index_shift) : s >> -t.index_shift;
+        s += t.index_offset;
+        if (t.map_stencil) s = t.stencil_map[static_cast<std::size_t>(s & static_cast<std::int64_t>(t.stencil_map.size() - 1))];
+        v[static_cast<std::size_t>(j) * width + i] = static_cast<std::uint32_t>(s);
+      }
+    pixel::pack_indices(v, width, height, type, pk, data);
+  } else if (format == gl::DEPTH_COMPONENT) {
+    pixel::pack_depth(depth_transfer(read_depth_rect(fb_, x, y, width, height), pixel_transfer_), width, height, type,
+                      pk, data);
+  } else {
+    pixel::pack_rgba(transfer(read_color_rect<T>(x, y, width, height), pixel::ImageDims::TwoD), format, type, pk,
+                     data);
+  }
+}
+
+void Context::readPixels(int x, int y, int width, int height, GLenum format, GLenum type, void* data) {
+  static const char* fn = "glReadPixels";
+  if (width < 0 || height < 0) {
+    error(gl::INVALID_VALUE, fn, "width and height must not be negative");
+    return;
+  }
+  if (format == gl::COLOR_INDEX) {  // GL121 §4.3.2: colour indices from an RGBA buffer
+    error(gl::INVALID_OPERATION, fn, "COLOR_INDEX from an RGBA colour buffer");
+    return;
+  }
+  if (pixel::color_format_components(format) == 0 && format != gl::STENCIL_INDEX && format != gl::DEPTH_COMPONENT) {
+    error(gl::INVALID_ENUM, fn, gl::enum_name(format) + " is not a pixel format ffsim reads");
+    return;
+  }
+  if (pixel::type_size(type) == 0) {
+    error(gl::INVALID_ENUM, fn, gl::enum_name(type) + " is not a pixel type ffsim packs");
+    return;
+  }
+  if (format == gl::STENCIL_INDEX && !fb_.has_stencil()) {
+    error(gl::INVALID_OPERATION, fn, "STENCIL_INDEX with no stencil buffer");
+    return;
+  }
+  if (format == gl::DEPTH_COMPONENT && !fb_.has_depth()) {
+    error(gl::INVALID_OPERATION, fn, "DEPTH_COMPONENT with no depth buffer");
+    return;
+  }
+  if (too_large(width, height)) {
+    error(gl::OUT_OF_MEMORY, fn, "a " + std::to_string(width) + "x" + std::to_string(height) + " rectangle is too large");
+    return;
+  }
+  if (width == 0 || height == 0) return;
+  if (!data) {
+    error(gl::INVALID_VALUE, fn, "no destination");
+    return;
+  }
+  // REDUCE convolution may leave nothing to write (§3.6.5): pack_rgba handles an empty image.
+  if (profile_.arithmetic == Arithmetic::Float64) read_pixels<double>(x, y, width, height, format, type, data);
+  else read_pixels<float>(x, y, width, height, format, type, data);
+}
+
+template <class T>
+void Context::copy_pixels(int x, int y, int width, int height, GLenum type) {
+  // §4.3.3: every source pixel is read before any write (read into an image first).
+  const auto inside = [&](int fx, int fy) { return fx >= 0 && fy >= 0 && fx < fb_.width() && fy < fb_.height(); };
+  if (type == gl::STENCIL) {
+    std::vector<std::int64_t> idx(static_cast<std::size_t>(width) * height, 0);
+    for (int j = 0; j < height; ++j)
+      for (int i = 0; i < width; ++i)
+        if (inside(x + i, y + j)) idx[static_cast<std::size_t>(j) * width + i] = fb_.stencil()[fb_.index(x + i, y + j)];
+    write_stencil_rect(0, 0, width, height, idx);
+  } else if (type == gl::DEPTH) {
+    write_depth_fragments(width, height, depth_transfer(read_depth_rect(fb_, x, y, width, height), pixel_transfer_));
+  } else {
+    emit_color_rect(transfer(read_color_rect<T>(x, y, width, height), pixel::ImageDims::TwoD));
+  }
+}
+
+void Context::copyPixels(int x, int y, int width, int height, GLenum type) {
+  static const char* fn = "glCopyPixels";
+  if (type != gl::COLOR && type != gl::STENCIL && type != gl::DEPTH) {
+    error(gl::INVALID_ENUM, fn, gl::enum_name(type) + " is not COLOR, STENCIL or DEPTH");
+    return;
+  }
+  if (width < 0 || height < 0) {
+    error(gl::INVALID_VALUE, fn, "width and height must not be negative");
+    return;
+  }
+  if (type == gl::STENCIL && !fb_.has_stencil()) {
+    error(gl::INVALID_OPERATION, fn, "STENCIL with no stencil buffer");
+    return;
+  }
+  if (type == gl::DEPTH && !fb_.has_depth()) {
+    error(gl::INVALID_OPERATION, fn, "DEPTH with no depth buffer");
+    return;
+  }
+  if (too_large(width, height)) {
+    error(gl::OUT_OF_MEMORY, fn, "a " + std::to_string(width) + "x" + std::to_string(height) + " rectangle is too large");
+    return;
+  }
+  if (profile_.arithmetic == Arithmetic::Float64) copy_pixels<double>(x, y, width, height, type);
+  else copy_pixels<float>(x, y, width, height, type);
+}
+
+}  // namespace ffsim

@@ -1,0 +1,180 @@
+// glTexImage1D/2D, glTexSubImage1D/2D, glCopyTexImage1D/2D, glCopyTexSubImage1D/2D
+// (GL121 §3.8.1-3.8.2): client data or framebuffer pixels through the transfer
+// plan, then conversion to the internal format (§3.8.1, Table 3.15) into the
+// TextureImage levels of the bound texture object.
+#include <algorithm>
+
+#include "pipeline/gl/enum_names.h"
+#include "pipeline/pixel_transfer/final_conversion.h"
+#include "pipeline/pixel_transfer/formats.h"
+#include "pipeline/pixel_transfer/unpack.h"
+#include "sim/context.h"
+
+namespace ffsim {
+
+using pixel::RgbaImage;
+
+namespace {
+constexpr int kMaxLevel = 11;  // log2(kMaxTextureSize)
+// w = 2^k + 2*border for some k >= 0 (GL121 §3.8.1), or 0.
+bool valid_texture_side(int w, int border) {
+  if (w == 0) return true;
+  const int s = w - 2 * border;
+  return s >= 1 && s <= pixel::kMaxTextureSize && (s & (s - 1)) == 0;
+}
+bool check_client_format(Context& ctx, const char* fn, GLenum format, GLenum type) {
+  if (pixel::color_format_components(format) == 0)
+    return ctx.error(gl::INVALID_ENUM, fn, gl::enum_name(format) + " is not a colour format of texture data");
+  if (pixel::type_size(type) == 0) {
+    if (pixel::is_unsupported_gl_type(type))
+      return ctx.error(gl::INVALID_ENUM, fn, gl::enum_name(type) + " (packed or bitmap) is not supported by ffsim");
+    return ctx.error(gl::INVALID_ENUM, fn, gl::enum_name(type) + " is not a pixel type");
+  }
+  return true;
+}
+}  // namespace
+
+template <class T>
+bool Context::tex_image(const char* fn, int dims, GLenum target, int level, GLenum internalformat, int width,
+                        int height, int border, GLenum format, GLenum type, const void* data, const int* copy_xy) {
+  const GLenum want = dims == 1 ? gl::TEXTURE_1D : gl::TEXTURE_2D;
+  if (target != want) return error(gl::INVALID_ENUM, fn, "target must be " + gl::enum_name(want) + " (got " +
+                                                             gl::enum_name(target) + ")");
+  if (level < 0 || level > kMaxLevel)
+    return error(gl::INVALID_VALUE, fn, "level must be 0.." + std::to_string(kMaxLevel) + " (got " +
+                                            std::to_string(level) + ")");
+  const auto f = pixel::texture_internal_format(internalformat);
+  if (!f) return error(gl::INVALID_VALUE, fn, gl::enum_name(internalformat) + " is not a texture internal format");
+  if (border != 0 && border != 1)
+    return error(gl::INVALID_VALUE, fn, "border must be 0 or 1 (got " + std::to_string(border) + ")");
+  if (width < 0 || height < 0)
+    return error(gl::INVALID_VALUE, fn, "width and height must not be negative");
+  if (!copy_xy && !check_client_format(*this, fn, format, type)) return false;
+  const pixel::ImageDims idims = dims == 1 ? pixel::ImageDims::OneD : pixel::ImageDims::TwoD;
+  int ow = 0, oh = 0;
+  pixel::transfer_output_size(transfer_inputs(), idims, width, height, ow, oh);
+  if (dims == 1) oh = 1;
+  if (!valid_texture_side(ow, border) || (dims == 2 && !valid_texture_side(oh, border)))
+    return error(gl::INVALID_VALUE, fn, "image size " + std::to_string(ow) + "x" + std::to_string(oh) +
+                                            " (after convolution) is not 2^k + 2*border with 2^k <= " +
+                                            std::to_string(pixel::kMaxTextureSize));
+  RgbaImage<T> img;
+  if (copy_xy) img = read_color_rect<T>(copy_xy[0], copy_xy[1], width, height);
+  else if (data) img = pixel::unpack_rgba<T>(data, width, height, format, type, pixel_store_.unpack);
+  if (copy_xy || data) img = transfer(std::move(img), idims);
+  else img = RgbaImage<T>(ow, oh);  // no data: contents undefined (GL121 §3.8.1); ffsim stores 0
+  if (ow == 0 || oh == 0) img = RgbaImage<T>(0, 0);
+  TextureObject& obj = bound_texture(active_unit_, target);
+  if (static_cast<int>(obj.levels.size()) <= level) obj.levels.resize(static_cast<std::size_t>(level) + 1);
+  obj.levels[level] = pixel::make_texture_image(img, internalformat, *f, border, profile_);
+  obj.target = target;
+  ++obj.version;
+  return true;
+}
+
+template <class T>
+bool Context::tex_sub_image(const char* fn, int dims, GLenum target, int level, int xoffset, int yoffset, int width,
+                            int height, GLenum format, GLenum type, const void* data, const int* copy_xy) {
+  const GLenum want = dims == 1 ? gl::TEXTURE_1D : gl::TEXTURE_2D;
+  if (target != want) return error(gl::INVALID_ENUM, fn, "target must be " + gl::enum_name(want) + " (got " +
+                                                             gl::enum_name(target) + ")");
+  if (level < 0 || level > kMaxLevel)
+    return error(gl::INVALID_VALUE, fn, "level must be 0.." + std::to_string(kMaxLevel));
+  if (width < 0 || height < 0) return error(gl::INVALID_VALUE, fn, "width and height must not be negative");
+  if (!copy_xy && !check_client_format(*this, fn, format, type)) return false;
+  TextureObject& obj = bound_texture(active_unit_, target);
+  if (static_cast<int>(obj.levels.size()) <= level || obj.levels[level].empty())
+    return error(gl::INVALID_OPERATION, fn, "level " + std::to_string(level) + " has not been specified");
+  TextureImage& ti = obj.levels[level];
+  const pixel::ImageDims idims = dims == 1 ? pixel::ImageDims::OneD : pixel::ImageDims::TwoD;
+  int ow = 0, oh = 0;
+  pixel::transfer_output_size(transfer_inputs(), idims, width, height, ow, oh);
+  if (dims == 1) oh = 1;
+  const int b = ti.border;
+  // §3.8.2: -b <= xoffset, xoffset + w <= w_t - b (and likewise in y for 2D).
+  if (xoffset < -b || xoffset + ow > ti.width - b || (dims == 2 && (yoffset < -b || yoffset + oh > ti.height - b)))
+    return error(gl::INVALID_VALUE, fn, "the region " + std::to_string(ow) + "x" + std::to_string(oh) + " at (" +
+                                            std::to_string(xoffset) + ", " + std::to_string(yoffset) +
+                                            ") is outside the level");
+  if (!copy_xy && !data && ow > 0 && oh > 0) return error(gl::INVALID_VALUE, fn, "no image data");
+  RgbaImage<T> img = copy_xy ? read_color_rect<T>(copy_xy[0], copy_xy[1], width, height)
+                             : pixel::unpack_rgba<T>(data, width, height, format, type, pixel_store_.unpack);
+  img = transfer(std::move(img), idims);
+  if (img.empty()) return true;
+  pixel::store_texels(img, ti, xoffset + b, dims == 1 ? 0 : yoffset + b, profile_);
+  ++obj.version;
+  return true;
+}
+
+
+void Context::texImage1D(GLenum target, int level, GLenum internalformat, int width, int border, GLenum format,
+                         GLenum type, const void* data) {
+  if (profile_.arithmetic == Arithmetic::Float64)
+    tex_image<double>("glTexImage1D", 1, target, level, internalformat, width, 1, border, format, type, data, nullptr);
+  else
+    tex_image<float>("glTexImage1D", 1, target, level, internalformat, width, 1, border, format, type, data, nullptr);
+}
+
+void Context::texImage2D(GLenum target, int level, GLenum internalformat, int width, int height, int border,
+                         GLenum format, GLenum type, const void* data) {
+  if (profile_.arithmetic == Arithmetic::Float64)
+    tex_image<double>("glTexImage2D", 2, target, level, internalformat, width, height, border, format, type, data,
+                      nullptr);
+  else
+    tex_image<float>("glTexImage2D", 2, target, level, internalformat, width, height, border, format, type, data,
+                     nullptr);
+}
+
+void Context::texSubImage1D(GLenum target, int level, int xoffset, int width, GLenum format, GLenum type,
+                            const void* data) {
+  if (profile_.arithmetic == Arithmetic::Float64)
+    tex_sub_image<double>("glTexSubImage1D", 1, target, level, xoffset, 0, width, 1, format, type, data, nullptr);
+  else
+    tex_sub_image<float>("glTexSubImage1D", 1, target, level, xoffset, 0, width, 1, format, type, data, nullptr);
+}
+
+void Context::texSubImage2D(GLenum target, int level, int xoffset, int yoffset, int width, int height, GLenum format,
+                            GLenum type, const void* data) {
+  if (profile_.arithmetic == Arithmetic::Float64)
+    tex_sub_image<double>("glTexSubImage2D", 2, target, level, xoffset, yoffset, width, height, format, type, data,
+                          nullptr);
+  else
+    tex_sub_image<float>("glTexSubImage2D", 2, target, level, xoffset, yoffset, width, height, format, type, data,
+                         nullptr);
+}
+
+void Context::copyTexImage1D(GLenum target, int level, GLenum internalformat, int x, int y, int width, int border) {
+  const int xy[2] = {x, y};
+  if (profile_.arithmetic == Arithmetic::Float64)
+    tex_image<double>("glCopyTexImage1D", 1, target, level, internalformat, width, 1, border, 0, 0, nullptr, xy);
+  else
+    tex_image<float>("glCopyTexImage1D", 1, target, level, internalformat, width, 1, border, 0, 0, nullptr, xy);
+}
+
+void Context::copyTexImage2D(GLenum target, int level, GLenum internalformat, int x, int y, int width, int height,
+                             int border) {
+  const int xy[2] = {x, y};
+  if (profile_.arithmetic == Arithmetic::Float64)
+    tex_image<double>("glCopyTexImage2D", 2, target, level, internalformat, width, height, border, 0, 0, nullptr, xy);
+  else
+    tex_image<float>("glCopyTexImage2D", 2, target, level, internalformat, width, height, border, 0, 0, nullptr, xy);
+}
+
+void Context::copyTexSubImage1D(GLenum target, int level, int xoffset, int x, int y, int width) {
+  const int xy[2] = {x, y};
+  if (profile_.arithmetic == Arithmetic::Float64)
+    tex_sub_image<double>("glCopyTexSubImage1D", 1, target, level, xoffset, 0, width, 1, 0, 0, nullptr, xy);
+  else
+    tex_sub_image<float>("glCopyTexSubImage1D", 1, target, level, xoffset, 0, width, 1, 0, 0, nullptr, xy);
+}
+
+void Context::copyTexSubImage2D(GLenum target, int level, int xoffset, int yoffset, int x, int y, int width,
+                                int height) {
+  const int xy[2] = {x, y};
+  if (profile_.arithmetic == Arithmetic::Float64)
+    tex_sub_image<double>("glCopyTexSubImage2D", 2, target, level, xoffset, yoffset, width, height, 0, 0, nullptr, xy);
+  else
+    tex_sub_image<float>("glCopyTexSubImage2D", 2, target, level, xoffset, yoffset, width, height, 0, 0, nullptr, xy);
+}
+
+}  // namespace ffsim
