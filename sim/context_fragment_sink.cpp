@@ -1,13 +1,10 @@
 // Where fragments go: pixel-rectangle fragments (DrawPixels/CopyPixels) and the
-// per-fragment operations.
+// per-fragment operations (GL 1.2.1 §4.1) through the current plan.
 //
-// Interim implementations, replaced by their owners:
-// - pixel_fragments (texturing of pixel-rectangle fragments with the raster
-//   position's texture coordinates, GL121 §3.6.4) -> rasterizer/texturing work;
-// - write_fragments (scissor, alpha, stencil, depth, blend, masks, GL121 §4.1)
-//   -> per-fragment operations work.
-// Until then: pixel fragments go straight to write_fragments, which writes colour
-// through the scissor box and the colour mask.
+// pixel_fragments is interim and owned by the rasterizer/texturing work
+// (texturing of pixel-rectangle fragments with the raster position's texture
+// coordinates, GL121 §3.6.4); until then pixel fragments go straight to
+// write_fragments.
 #include "sim/context.h"
 
 namespace ffsim {
@@ -15,19 +12,13 @@ namespace ffsim {
 void Context::pixel_fragments(FragmentSpan& span) { write_fragments(span); }
 
 void Context::write_fragments(FragmentSpan& span) {
-  const Rect r = write_rect();
-  if (span.y < r.y || span.y >= r.y + r.height) return;
-  const bool fl = fb_.format().float_color();
-  for (int i = 0; i < span.count; ++i) {
-    const int x = span.x0 + i;
-    if (x < r.x || x >= r.x + r.width) continue;
-    const std::size_t dst = 4 * fb_.index(x, span.y);
-    for (int c = 0; c < 4; ++c) {
-      if (!masks_.color[c]) continue;
-      if (fl) fb_.values()[dst + c] = span.values[4 * i + c];
-      else fb_.codes()[dst + c] = span.codes[4 * i + c];
-    }
-  }
+  update_fragment_plan();
+  FragmentBuffers b;
+  if (fb_.format().float_color()) b.values = fb_.values().data();
+  else b.codes = fb_.codes().data();
+  if (fb_.has_stencil()) b.stencil = fb_.stencil().data();
+  if (fb_.has_depth()) b.depth = fb_.depth().data();
+  run_fragment_plan(*fragment_current_plan_, fragment_current_constants_, span, b, fb_.width());
 }
 
 }  // namespace ffsim
