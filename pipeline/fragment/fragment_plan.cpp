@@ -163,110 +163,184 @@ namespace {
 
 constexpr int kChunk = 256;  // fragments per pass over the stages (stack-sized mask)
 
-struct FixedColor {
-  using T = std::uint32_t;
-  static T src(const FragmentSpan& sp, int i, int c) { return sp.codes[4 * static_cast<std::size_t>(i) + c]; }
-  static T dst(const FragmentBuffers& b, std::size_t p, int c) { return b.codes[4 * p + c]; }
-  static void store(const FragmentBuffers& b, std::size_t p, int c, T v) {
-    b.codes[4 * p + c] = static_cast<std::uint16_t>(v);
-  }
-};
-
+// Float colour stage for one channel (F = float for Float32, double for Float64),
+// per fragment.
 template <class F>
-struct FloatColor {
-  using T = F;
-  static T src(const FragmentSpan& sp, int i, int c) { return static_cast<F>(sp.values[4 * static_cast<std::size_t>(i) + c]); }
-  static T dst(const FragmentBuffers& b, std::size_t p, int c) { return static_cast<F>(b.values[4 * p + c]); }
-  static void store(const FragmentBuffers& b, std::size_t p, int c, T v) { b.values[4 * p + c] = static_cast<double>(v); }
-};
-
-// Colour stage for one channel over a chunk of surviving fragments.
-template <class Col>
-void color_channel(const FragmentPlan& plan, const FragmentConstants& k, const FragmentSpan& sp, const FragmentBuffers& b,
-                   std::size_t row, int start, int n, const std::uint8_t* alive, int c, Arithmetic arith) {
-  using T = typename Col::T;
-  constexpr bool fixed = std::is_same_v<T, std::uint32_t>;
-  const T M = fixed ? static_cast<T>(k.color_max) : T(1);
-  T kc[4];
-  for (int j = 0; j < 4; ++j) kc[j] = fixed ? static_cast<T>(k.blend_color_code[j]) : static_cast<T>(k.blend_color_value[j]);
+void color_channel_float(const FragmentPlan& plan, const FragmentConstants& k, const FragmentSpan& sp,
+                         const FragmentBuffers& b, std::size_t row, int start, int n, const std::uint8_t* alive, int c,
+                         Arithmetic arith) {
+  F kc[4];
+  for (int q = 0; q < 4; ++q) kc[q] = static_cast<F>(k.blend_color_value[q]);
   const GLenum sf = plan.key.blend_src, df = plan.key.blend_dst;
-  const auto pix = [&](int j) { return row + static_cast<std::size_t>(sp.x0 + start + j); };
-  const auto s4 = [&](int j, T* s) { for (int q = 0; q < 4; ++q) s[q] = Col::src(sp, start + j, q); };
-  const auto d4 = [&](std::size_t p, T* d) { for (int q = 0; q < 4; ++q) d[q] = Col::dst(b, p, q); };
-  const auto term = [&](T v, T f) -> T {
-    if constexpr (fixed) return blend_term_code(v, f, M);
-    else return clamp01(v * f);
-  };
-  switch (plan.key.channel[c]) {
-    case ChannelOp::Keep: return;
-    case ChannelOp::Zero:
-      for (int j = 0; j < n; ++j) if (alive[j]) Col::store(b, pix(j), c, T(0));
-      return;
-    case ChannelOp::Copy:
-      for (int j = 0; j < n; ++j) {
-        if (!alive[j]) continue;
-        if constexpr (fixed) Col::store(b, pix(j), c, Col::src(sp, start + j, c));
-        else b.values[4 * pix(j) + c] = store_float_color(sp.values[4 * static_cast<std::size_t>(start + j) + c], arith);
-      }
-      return;
-    case ChannelOp::SrcTerm:
-      for (int j = 0; j < n; ++j) {
-        if (!alive[j]) continue;
-        T s[4], d[4] = {0, 0, 0, 0};
-        s4(j, s);
-        if (plan.read_dst_color) d4(pix(j), d);
-        Col::store(b, pix(j), c, term(s[c], blend_factor<T>(sf, c, s, d, kc, M)));
-      }
-      return;
-    case ChannelOp::DstTerm:
-      for (int j = 0; j < n; ++j) {
-        if (!alive[j]) continue;
-        T s[4], d[4];
-        s4(j, s);
-        d4(pix(j), d);
-        Col::store(b, pix(j), c, term(d[c], blend_factor<T>(df, c, s, d, kc, M)));
-      }
-      return;
-    case ChannelOp::Add:
-    case ChannelOp::Sub:
-    case ChannelOp::RevSub: {
-      const GLenum eq = plan.key.blend_equation;
-      for (int j = 0; j < n; ++j) {
-        if (!alive[j]) continue;
-        T s[4], d[4];
-        s4(j, s);
-        d4(pix(j), d);
-        const T S = blend_factor<T>(sf, c, s, d, kc, M), D = blend_factor<T>(df, c, s, d, kc, M);
-        if constexpr (fixed) Col::store(b, pix(j), c, blend_code(eq, s[c], S, d[c], D, M));
-        else Col::store(b, pix(j), c, blend_value<T>(eq, s[c], S, d[c], D));
-      }
-      return;
+  const ChannelOp op = plan.key.channel[c];
+  if (op == ChannelOp::Keep || op == ChannelOp::Logic) return;  // Logic never occurs on float colour
+  for (int j = 0; j < n; ++j) {
+    if (!alive[j]) continue;
+    const std::size_t i = static_cast<std::size_t>(start + j);
+    const std::size_t p = row + static_cast<std::size_t>(sp.x0 + start + j);
+    double* out = b.values + 4 * p;
+    if (op == ChannelOp::Copy) {
+      out[c] = store_float_color(sp.values[4 * i + c], arith);
+      continue;
     }
-    case ChannelOp::Min:
-    case ChannelOp::Max: {
-      const bool mx = plan.key.channel[c] == ChannelOp::Max;
-      for (int j = 0; j < n; ++j) {
-        if (!alive[j]) continue;
-        const T sv = Col::src(sp, start + j, c), dv = Col::dst(b, pix(j), c);
-        T r = mx ? std::max(sv, dv) : std::min(sv, dv);
-        if constexpr (!fixed) r = clamp01(r);
-        Col::store(b, pix(j), c, r);
-      }
-      return;
+    F s[4], d[4] = {0, 0, 0, 0};
+    for (int q = 0; q < 4; ++q) s[q] = static_cast<F>(sp.values[4 * i + q]);
+    if (plan.read_dst_color)
+      for (int q = 0; q < 4; ++q) d[q] = static_cast<F>(out[q]);
+    F r = 0;
+    switch (op) {
+      case ChannelOp::Zero: r = 0; break;
+      case ChannelOp::SrcTerm: r = clamp01(s[c] * blend_factor<F>(sf, c, s, d, kc, F(1))); break;
+      case ChannelOp::DstTerm: r = clamp01(d[c] * blend_factor<F>(df, c, s, d, kc, F(1))); break;
+      case ChannelOp::Add:
+      case ChannelOp::Sub:
+      case ChannelOp::RevSub:
+        r = blend_value<F>(plan.key.blend_equation, s[c], blend_factor<F>(sf, c, s, d, kc, F(1)), d[c],
+                           blend_factor<F>(df, c, s, d, kc, F(1)));
+        break;
+      case ChannelOp::Min: r = clamp01(std::min(s[c], d[c])); break;
+      case ChannelOp::Max: r = clamp01(std::max(s[c], d[c])); break;
+      default: break;
     }
-    case ChannelOp::Logic:
-      if constexpr (fixed) {
-        for (int j = 0; j < n; ++j)
-          if (alive[j]) Col::store(b, pix(j), c, logic_op(plan.key.logic_op, Col::src(sp, start + j, c), Col::dst(b, pix(j), c), M));
-      }
-      return;
+    out[c] = static_cast<double>(r);
   }
 }
 
-template <class Col>
+// Fixed colour: a chunk of fragments de-interleaved into per-channel arrays, each
+// written channel computed by a loop specialised by its operation and factors,
+// then stored where the fragment survived. kM is the colour maximum M when known at
+// compile time (255: 32-bit arithmetic and division by a constant), 0 otherwise.
+template <std::uint32_t kM>
+struct FixedKernel {
+  using I = std::conditional_t<kM == 255, std::int32_t, std::int64_t>;
+  std::uint32_t M;
+  std::uint32_t src[4][kChunk];
+  std::uint32_t dst[4][kChunk];
+
+  std::uint32_t max() const { return kM ? kM : M; }
+
+  // Factor `f` for channel c of every fragment of the chunk.
+  void factor(GLenum f, int c, const std::uint32_t* kc, int n, std::uint32_t* out) const {
+    const std::uint32_t m = max();
+    switch (f) {
+      case gl::ZERO: std::fill_n(out, n, 0u); return;
+      case gl::ONE: std::fill_n(out, n, m); return;
+      case gl::SRC_COLOR: std::copy_n(src[c], n, out); return;
+      case gl::ONE_MINUS_SRC_COLOR: for (int j = 0; j < n; ++j) out[j] = m - src[c][j]; return;
+      case gl::DST_COLOR: std::copy_n(dst[c], n, out); return;
+      case gl::ONE_MINUS_DST_COLOR: for (int j = 0; j < n; ++j) out[j] = m - dst[c][j]; return;
+      case gl::SRC_ALPHA: std::copy_n(src[3], n, out); return;
+      case gl::ONE_MINUS_SRC_ALPHA: for (int j = 0; j < n; ++j) out[j] = m - src[3][j]; return;
+      case gl::DST_ALPHA: std::copy_n(dst[3], n, out); return;
+      case gl::ONE_MINUS_DST_ALPHA: for (int j = 0; j < n; ++j) out[j] = m - dst[3][j]; return;
+      case gl::CONSTANT_COLOR: std::fill_n(out, n, kc[c]); return;
+      case gl::ONE_MINUS_CONSTANT_COLOR: std::fill_n(out, n, m - kc[c]); return;
+      case gl::CONSTANT_ALPHA: std::fill_n(out, n, kc[3]); return;
+      case gl::ONE_MINUS_CONSTANT_ALPHA: std::fill_n(out, n, m - kc[3]); return;
+      case gl::SRC_ALPHA_SATURATE:
+        if (c == 3) std::fill_n(out, n, m);
+        else for (int j = 0; j < n; ++j) out[j] = std::min(src[3][j], m - dst[3][j]);
+        return;
+      default: std::fill_n(out, n, 0u); return;
+    }
+  }
+
+  // rnd(clamp01(v / M^2) * M) of the numerator v over M^2 (blend.h's blend_code),
+  // branch free: clamping v to [0, M^2] first gives 0 and M at the ends.
+  std::uint32_t finish(I v) const {
+    const I m = static_cast<I>(max());
+    v = v < 0 ? 0 : v;
+    v = v > m * m ? m * m : v;
+    return static_cast<std::uint32_t>((2 * v + m) / (2 * m));
+  }
+
+  void channel(const FragmentPlanKey& key, const std::uint32_t* kc, int c, int n, std::uint32_t* out) const {
+    const std::uint32_t m = max();
+    std::uint32_t S[kChunk], D[kChunk];
+    const std::uint32_t* cs = src[c];
+    const std::uint32_t* cd = dst[c];
+    switch (key.channel[c]) {
+      case ChannelOp::Keep: return;
+      case ChannelOp::Zero: std::fill_n(out, n, 0u); return;
+      case ChannelOp::Copy: std::copy_n(cs, n, out); return;
+      case ChannelOp::SrcTerm:
+        factor(key.blend_src, c, kc, n, S);
+        for (int j = 0; j < n; ++j) out[j] = finish(static_cast<I>(cs[j]) * static_cast<I>(S[j]));
+        return;
+      case ChannelOp::DstTerm:
+        factor(key.blend_dst, c, kc, n, D);
+        for (int j = 0; j < n; ++j) out[j] = finish(static_cast<I>(cd[j]) * static_cast<I>(D[j]));
+        return;
+      case ChannelOp::Add:
+        factor(key.blend_src, c, kc, n, S);
+        factor(key.blend_dst, c, kc, n, D);
+        for (int j = 0; j < n; ++j)
+          out[j] = finish(static_cast<I>(cs[j]) * static_cast<I>(S[j]) + static_cast<I>(cd[j]) * static_cast<I>(D[j]));
+        return;
+      case ChannelOp::Sub:
+        factor(key.blend_src, c, kc, n, S);
+        factor(key.blend_dst, c, kc, n, D);
+        for (int j = 0; j < n; ++j)
+          out[j] = finish(static_cast<I>(cs[j]) * static_cast<I>(S[j]) - static_cast<I>(cd[j]) * static_cast<I>(D[j]));
+        return;
+      case ChannelOp::RevSub:
+        factor(key.blend_src, c, kc, n, S);
+        factor(key.blend_dst, c, kc, n, D);
+        for (int j = 0; j < n; ++j)
+          out[j] = finish(static_cast<I>(cd[j]) * static_cast<I>(D[j]) - static_cast<I>(cs[j]) * static_cast<I>(S[j]));
+        return;
+      case ChannelOp::Min: for (int j = 0; j < n; ++j) out[j] = std::min(cs[j], cd[j]); return;
+      case ChannelOp::Max: for (int j = 0; j < n; ++j) out[j] = std::max(cs[j], cd[j]); return;
+      case ChannelOp::Logic: for (int j = 0; j < n; ++j) out[j] = logic_op(key.logic_op, cs[j], cd[j], m); return;
+    }
+  }
+};
+
+template <std::uint32_t kM>
+void color_stage_fixed(const FragmentPlan& plan, const FragmentConstants& k, const FragmentSpan& sp,
+                       const FragmentBuffers& b, std::size_t row, int start, int n, const std::uint8_t* alive) {
+  FixedKernel<kM> kern;
+  kern.M = k.color_max;
+  const std::uint16_t* in = sp.codes.data() + 4 * static_cast<std::size_t>(start);
+  std::uint16_t* px = b.codes + 4 * (row + static_cast<std::size_t>(sp.x0 + start));
+  for (int j = 0; j < n; ++j)
+    for (int q = 0; q < 4; ++q) kern.src[q][j] = in[4 * j + q];
+  if (plan.read_dst_color)
+    for (int j = 0; j < n; ++j)
+      for (int q = 0; q < 4; ++q) kern.dst[q][j] = px[4 * j + q];
+  const std::uint32_t* kc = k.blend_color_code.data();
+  std::uint32_t out[4][kChunk];
+  std::uint16_t wmask[4];
+  for (int c = 0; c < 4; ++c) {
+    const bool written = plan.key.channel[c] != ChannelOp::Keep;
+    wmask[c] = written ? 0xFFFF : 0;
+    if (written) kern.channel(plan.key, kc, c, n, out[c]);
+    else std::fill_n(out[c], n, 0u);
+  }
+  // Masked store: written channels of surviving fragments only.
+  for (int j = 0; j < n; ++j) {
+    const std::uint16_t a = alive[j] ? 0xFFFF : 0;
+    for (int c = 0; c < 4; ++c) {
+      const std::uint16_t m = a & wmask[c];
+      px[4 * j + c] = static_cast<std::uint16_t>((static_cast<std::uint16_t>(out[c][j]) & m) | (px[4 * j + c] & ~m));
+    }
+  }
+}
+
 void color_stage(const FragmentPlan& plan, const FragmentConstants& k, const FragmentSpan& sp, const FragmentBuffers& b,
                  std::size_t row, int start, int n, const std::uint8_t* alive, Arithmetic arith) {
-  for (int c = 0; c < 4; ++c) color_channel<Col>(plan, k, sp, b, row, start, n, alive, c, arith);
+  switch (arith) {
+    case Arithmetic::Fixed:
+      if (k.color_max == 255) color_stage_fixed<255>(plan, k, sp, b, row, start, n, alive);
+      else color_stage_fixed<0>(plan, k, sp, b, row, start, n, alive);
+      return;
+    case Arithmetic::Float32:
+      for (int c = 0; c < 4; ++c) color_channel_float<float>(plan, k, sp, b, row, start, n, alive, c, arith);
+      return;
+    case Arithmetic::Float64:
+      for (int c = 0; c < 4; ++c) color_channel_float<double>(plan, k, sp, b, row, start, n, alive, c, arith);
+      return;
+  }
 }
 
 void check_span(const FragmentSpan& sp, bool fixed) {
@@ -334,13 +408,7 @@ void run_fragment_plan(const FragmentPlan& plan, const FragmentConstants& k, con
       }
     }
     // Blending / logic op, dithering (identity), masked colour writes.
-    if (plan.write_color) {
-      switch (key.arith) {
-        case Arithmetic::Fixed: color_stage<FixedColor>(plan, k, sp, b, row, start, n, alive, key.arith); break;
-        case Arithmetic::Float32: color_stage<FloatColor<float>>(plan, k, sp, b, row, start, n, alive, key.arith); break;
-        case Arithmetic::Float64: color_stage<FloatColor<double>>(plan, k, sp, b, row, start, n, alive, key.arith); break;
-      }
-    }
+    if (plan.write_color) color_stage(plan, k, sp, b, row, start, n, alive, key.arith);
   }
 }
 
