@@ -619,15 +619,27 @@ std::string describe(const FragmentPlan& plan, const FragmentConstants& k) {
   if (key.alpha_func == 0) out += "  alpha test: skipped\n";
   else {
     out += std::string("  alpha test: pass if A_s ") + test_func_symbol(key.alpha_func) + " ";
-    out += fixed ? std::to_string(k.alpha_ref_code) + " (ref code of " + std::to_string(k.color_max) + ")" : num(k.alpha_ref_value);
+    out += fixed ? std::to_string(k.alpha_ref_code) + "/" + std::to_string(k.color_max) + " (ref " + num(k.alpha_ref_value) + ")"
+                 : num(k.alpha_ref_value);
     out += "\n";
   }
   if (!key.stencil) out += "  stencil test: skipped\n";
   else {
-    out += std::string("  stencil test: pass if (") + std::to_string(k.stencil_ref) + " & " + hex(k.stencil_value_mask) + ") " +
-           test_func_symbol(key.stencil_func) + " (S & " + hex(k.stencil_value_mask) + "); ops: fail " + stencil_op_name(key.sfail) +
-           ", depth fail " + stencil_op_name(key.dpfail) + ", pass " + stencil_op_name(key.dppass) + "; write mask " +
-           hex(k.stencil_writemask) + "\n";
+    out += "  stencil test: ";
+    if (key.stencil_func == gl::ALWAYS) out += "always passes";
+    else if (key.stencil_func == gl::NEVER) out += "never passes";
+    else
+      out += std::string("pass if (") + std::to_string(k.stencil_ref) + " & " + hex(k.stencil_value_mask) + ") " +
+             test_func_symbol(key.stencil_func) + " (S & " + hex(k.stencil_value_mask) + ")";
+    std::vector<std::string> ops;  // only the ops that can run
+    if (key.stencil_func != gl::ALWAYS) ops.push_back(std::string("fail ") + stencil_op_name(key.sfail));
+    if (key.stencil_func != gl::NEVER) {
+      if (key.depth) ops.push_back(std::string("depth fail ") + stencil_op_name(key.dpfail));
+      ops.push_back(std::string("pass ") + stencil_op_name(key.dppass));
+    }
+    out += "; ops:";
+    for (std::size_t i = 0; i < ops.size(); ++i) out += (i ? ", " : " ") + ops[i];
+    out += "; write mask " + hex(k.stencil_writemask) + "\n";
   }
   if (!key.depth) out += "  depth test: skipped\n";
   else out += std::string("  depth test: pass if z ") + test_func_symbol(key.depth_func) + " Z_d; " +

@@ -174,8 +174,15 @@ TEST_CASE("describe: blend equations with trivial terms removed") {
   s.alpha = {true, gl::EQUAL, 0.0};
   s.stencil = {true, gl::ALWAYS, 0, 0xFF, gl::KEEP, gl::KEEP, gl::INCR};
   t = text_of(s);
-  CHECK(contains(t, "  alpha test: pass if A_s == 0 (ref code of 255)\n"));
-  CHECK(contains(t, "  stencil test: pass if (0 & 0xff) always (S & 0xff); ops: fail KEEP, depth fail KEEP, pass INCR; write mask 0xff\n"));
+  CHECK(contains(t, "  alpha test: pass if A_s == 0/255 (ref 0)\n"));
+  CHECK(contains(t, "  stencil test: always passes; ops: pass INCR; write mask 0xff\n"));
+  s.alpha = {true, gl::GEQUAL, 0.5};
+  s.stencil = {true, gl::LESS, 0x13, 0x0F, gl::ZERO, gl::INVERT, gl::REPLACE};
+  s.depth = {true, gl::LESS};
+  t = text_of(s);
+  CHECK(contains(t, "  alpha test: pass if A_s >= 128/255 (ref 0.5)\n"));
+  CHECK(contains(t, "  stencil test: pass if (19 & 0xf) < (S & 0xf); ops: fail ZERO, depth fail INVERT, pass REPLACE; write mask 0xff\n"));
+  CHECK(contains(t, "  depth test: pass if z < Z_d; writes z\n"));
   // Exact full text of one plan (the format the --explain output uses).
   s = FragmentOpsState{};
   s.scissor = {true, 2, 1, 4, 1};
