@@ -80,11 +80,6 @@ constexpr std::uint32_t blend_code(GLenum eq, std::uint32_t cs, std::uint32_t S,
   return static_cast<std::uint32_t>((2 * n + M) / (2 * std::int64_t{M}));
 }
 
-// Round a product term cs*S / M (no clamp needed: it lies in [0, M]).
-constexpr std::uint32_t blend_term_code(std::uint32_t c, std::uint32_t f, std::uint32_t M) {
-  return static_cast<std::uint32_t>((2 * std::uint64_t{c} * f + M) / (2 * std::uint64_t{M}));
-}
-
 // Float: the formula in T (float or double), then clamp01.
 template <class T>
 constexpr T blend_value(GLenum eq, T cs, T S, T cd, T D) {

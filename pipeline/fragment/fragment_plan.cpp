@@ -14,7 +14,6 @@ namespace ffsim {
 
 namespace {
 
-bool is_blend_op(ChannelOp op) { return op >= ChannelOp::SrcTerm && op <= ChannelOp::Max; }
 bool uses_src_factor(ChannelOp op) {
   return op == ChannelOp::SrcTerm || op == ChannelOp::Add || op == ChannelOp::Sub || op == ChannelOp::RevSub;
 }
@@ -79,7 +78,7 @@ FragmentPlanKey fragment_plan_key(const FragmentOpsState& s, const FragmentTarge
 
   const bool logic = s.logic.enabled && fixed;  // float colour has no bits to combine (numerics §9.6)
   const bool blend = s.blend.enabled && !logic;  // §4.1.8: the logic op replaces blending
-  bool any_write = false, any_blend = false, any_logic = false, any_src = false, any_dst = false;
+  bool any_write = false, any_logic = false, any_src = false, any_dst = false;
   for (int c = 0; c < 4; ++c) {
     ChannelOp op = ChannelOp::Copy;
     if (!s.color_mask[c]) op = ChannelOp::Keep;
@@ -90,7 +89,6 @@ FragmentPlanKey fragment_plan_key(const FragmentOpsState& s, const FragmentTarge
     else if (blend) op = blend_channel_op(s.blend.equation, s.blend.src, s.blend.dst, c);
     k.channel[c] = op;
     any_write |= op != ChannelOp::Keep;
-    any_blend |= is_blend_op(op);
     any_logic |= op == ChannelOp::Logic;
     any_src |= uses_src_factor(op);
     any_dst |= uses_dst_factor(op);
@@ -117,11 +115,10 @@ FragmentPlanKey fragment_plan_key(const FragmentOpsState& s, const FragmentTarge
     k.depth_func = df;
     k.depth_write = dw;
   }
-  if (any_blend) {
-    k.blend_equation = s.blend.equation;
-    k.blend_src = any_src ? s.blend.src : 0;
-    k.blend_dst = any_dst ? s.blend.dst : 0;
-  }
+  // The equation is part of each channel's operation; a factor is kept only if a
+  // channel's operation uses it.
+  if (any_src) k.blend_src = s.blend.src;
+  if (any_dst) k.blend_dst = s.blend.dst;
   if (any_logic) k.logic_op = s.logic.op;
   return k;
 }
@@ -195,7 +192,7 @@ void color_channel_float(const FragmentPlan& plan, const FragmentConstants& k, c
       case ChannelOp::Add:
       case ChannelOp::Sub:
       case ChannelOp::RevSub:
-        r = blend_value<F>(plan.key.blend_equation, s[c], blend_factor<F>(sf, c, s, d, kc, F(1)), d[c],
+        r = blend_value<F>(op == ChannelOp::Add ? gl::FUNC_ADD : op == ChannelOp::Sub ? gl::FUNC_SUBTRACT : gl::FUNC_REVERSE_SUBTRACT, s[c], blend_factor<F>(sf, c, s, d, kc, F(1)), d[c],
                            blend_factor<F>(df, c, s, d, kc, F(1)));
         break;
       case ChannelOp::Min: r = clamp01(std::min(s[c], d[c])); break;

@@ -92,7 +92,7 @@ struct FragmentPlanKey {
   GLenum depth_func = 0;
   bool depth_write = false;
   std::array<ChannelOp, 4> channel{ChannelOp::Keep, ChannelOp::Keep, ChannelOp::Keep, ChannelOp::Keep};
-  GLenum blend_src = 0, blend_dst = 0, blend_equation = 0;  // 0 when no channel blends
+  GLenum blend_src = 0, blend_dst = 0;  // 0 when no channel's operation uses the factor
   GLenum logic_op = 0;                                      // 0 when no channel uses the logic op
   auto operator<=>(const FragmentPlanKey&) const = default;
 };

@@ -69,6 +69,14 @@ TEST_CASE("plan key: state that cannot matter is cleared") {
   m1.blend = {true, gl::SRC_ALPHA, gl::ONE, gl::MIN, {}};
   m2.blend = {true, gl::ONE, gl::DST_ALPHA, gl::MIN, {}};
   CHECK(fragment_plan_key(m1, kT8) == fragment_plan_key(m2, kT8));
+  // A source term alone is the same operation under FUNC_ADD and FUNC_SUBTRACT.
+  m1.blend = {true, gl::SRC_ALPHA, gl::ZERO, gl::FUNC_ADD, {}};
+  m2.blend = {true, gl::SRC_ALPHA, gl::ZERO, gl::FUNC_SUBTRACT, {}};
+  CHECK(fragment_plan_key(m1, kT8) == fragment_plan_key(m2, kT8));
+  // ... but not under FUNC_REVERSE_SUBTRACT (0 - Cs*S clamps to 0).
+  m2.blend.equation = gl::FUNC_REVERSE_SUBTRACT;
+  CHECK(fragment_plan_key(m1, kT8) != fragment_plan_key(m2, kT8));
+  CHECK(fragment_plan_key(m2, kT8).channel[0] == ChannelOp::Zero);
   // Constants are not in the key: alpha ref, stencil ref and masks, blend colour, scissor box.
   FragmentOpsState k1, k2;
   k1.alpha = {true, gl::GREATER, 0.1};
