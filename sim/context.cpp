@@ -60,7 +60,12 @@ bool Context::set_capability(GLenum cap, bool on, const char* function) {
     case gl::COLOR_SUM: color_sum_ = on; return true;
 
     // ==== [issue 4b] capabilities ====
-
+    case gl::ALPHA_TEST: alpha_test_.enabled = on; return true;
+    case gl::STENCIL_TEST: stencil_.enabled = on; return true;
+    case gl::DEPTH_TEST: depth_.enabled = on; return true;
+    case gl::BLEND: blend_.enabled = on; return true;
+    case gl::DITHER: dither_ = on; return true;
+    case gl::COLOR_LOGIC_OP: logic_op_.enabled = on; return true;
 
     // ==== [issue 5] capabilities ====
 
@@ -91,7 +96,12 @@ bool Context::isEnabled(GLenum cap) {
     case gl::COLOR_SUM: return color_sum_;
 
     // ==== [issue 4b] capabilities ====
-
+    case gl::ALPHA_TEST: return alpha_test_.enabled;
+    case gl::STENCIL_TEST: return stencil_.enabled;
+    case gl::DEPTH_TEST: return depth_.enabled;
+    case gl::BLEND: return blend_.enabled;
+    case gl::DITHER: return dither_;
+    case gl::COLOR_LOGIC_OP: return logic_op_.enabled;
 
     // ==== [issue 5] capabilities ====
 

@@ -19,6 +19,7 @@
 
 #include <map>
 
+#include "pipeline/fragment/fragment_plan.h"
 #include "pipeline/fragment/fragment_span.h"
 #include "pipeline/geometry/clip.h"
 #include "pipeline/geometry/matrix_stack.h"
@@ -283,6 +284,28 @@ class Context {
 
 
   // ==== [issue 4b] per-fragment operations ====
+  // sim/context_fragment.cpp (GL121 §4.1.3-§4.1.8, EXT_blend_color/_minmax/_subtract,
+  // EXT_stencil_wrap). Enables: ALPHA_TEST, STENCIL_TEST, DEPTH_TEST, BLEND, DITHER,
+  // COLOR_LOGIC_OP.
+  void alphaFunc(GLenum func, double ref);
+  void stencilFunc(GLenum func, std::int32_t ref, std::uint32_t mask);
+  void stencilOp(GLenum sfail, GLenum dpfail, GLenum dppass);
+  void depthFunc(GLenum func);
+  void blendFunc(GLenum sfactor, GLenum dfactor);
+  void blendEquation(GLenum mode);
+  void blendColor(double r, double g, double b, double a);
+  void logicOp(GLenum opcode);
+  // The per-fragment state as the stages see it (write masks and scissor included)
+  // and the buffers' format.
+  FragmentOpsState fragment_ops_state() const;
+  FragmentTarget fragment_target() const;
+  // The plan for the current state, built or fetched from the cache by its
+  // canonical key; and the constants of the current state.
+  const FragmentPlan& fragment_plan();
+  const FragmentConstants& fragment_plan_constants();
+  std::size_t fragment_plan_cache_size() const { return fragment_plans_.size(); }
+  // describe() of the current plan, for --explain / per-draw logs.
+  std::string explain_fragment_ops();
 
 
   // ==== [issue 5] register combiners ====
@@ -394,6 +417,19 @@ class Context {
 
 
   // ==== [issue 4b] state ====
+  AlphaTestState alpha_test_;
+  StencilState stencil_;
+  DepthState depth_;
+  BlendState blend_;
+  LogicOpState logic_op_;
+  bool dither_ = true;  // GL initial state (§4.1.7)
+  std::map<FragmentPlanKey, FragmentPlan> fragment_plans_;
+  // The state the current plan and constants were made for; rebuilt when it differs.
+  bool fragment_current_valid_ = false;
+  FragmentOpsState fragment_current_state_;
+  const FragmentPlan* fragment_current_plan_ = nullptr;
+  FragmentConstants fragment_current_constants_;
+  void update_fragment_plan();
 
 
   // ==== [issue 5] state ====

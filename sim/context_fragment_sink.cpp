@@ -1,16 +1,15 @@
 // Where fragments go: pixel-rectangle fragments (DrawPixels/CopyPixels) and the
-// per-fragment operations.
+// per-fragment operations (GL 1.2.1 §4.1) through the current plan.
 //
-// - pixel_fragments (texturing work, GL121 §3.6.4 "Conversion to Fragments"):
-//   when a texture unit is enabled, every fragment is textured with the raster
-//   position's texture coordinates (s/q, t/q) at λ = 0, the texture
-//   environments run on the fragment's colour as primary colour, and the colour
-//   sum adds a zero secondary colour (spec-notes choice #12); then
-//   write_fragments. When nothing shades (shading_active false) the span goes
-//   to write_fragments unchanged.
-// - write_fragments (scissor, alpha, stencil, depth, blend, masks, GL121 §4.1):
-//   interim body until the per-fragment operations work replaces it; writes
-//   colour through the scissor box and the colour mask.
+// - pixel_fragments (GL121 §3.6.4 "Conversion to Fragments"): when a texture
+//   unit is enabled, every fragment is textured with the raster position's
+//   texture coordinates (s/q, t/q) at λ = 0, the texture environments run on the
+//   fragment's colour as primary colour, and the colour sum adds a zero
+//   secondary colour (spec-notes choice #12); then write_fragments. When nothing
+//   shades (shading_active false) the span goes to write_fragments unchanged.
+// - write_fragments (scissor, alpha, stencil, depth, blend, dither, masks,
+//   GL121 §4.1): the cached per-fragment plan for the current state
+//   (pipeline/fragment/fragment_plan.h).
 #include "sim/context.h"
 
 namespace ffsim {
@@ -45,19 +44,13 @@ void Context::pixel_fragments(FragmentSpan& span) {
 }
 
 void Context::write_fragments(FragmentSpan& span) {
-  const Rect r = write_rect();
-  if (span.y < r.y || span.y >= r.y + r.height) return;
-  const bool fl = fb_.format().float_color();
-  for (int i = 0; i < span.count; ++i) {
-    const int x = span.x0 + i;
-    if (x < r.x || x >= r.x + r.width) continue;
-    const std::size_t dst = 4 * fb_.index(x, span.y);
-    for (int c = 0; c < 4; ++c) {
-      if (!masks_.color[c]) continue;
-      if (fl) fb_.values()[dst + c] = span.values[4 * i + c];
-      else fb_.codes()[dst + c] = span.codes[4 * i + c];
-    }
-  }
+  update_fragment_plan();
+  FragmentBuffers b;
+  if (fb_.format().float_color()) b.values = fb_.values().data();
+  else b.codes = fb_.codes().data();
+  if (fb_.has_stencil()) b.stencil = fb_.stencil().data();
+  if (fb_.has_depth()) b.depth = fb_.depth().data();
+  run_fragment_plan(*fragment_current_plan_, fragment_current_constants_, span, b, fb_.width());
 }
 
 }  // namespace ffsim

@@ -1,0 +1,678 @@
+#include "pipeline/fragment/fragment_plan.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <type_traits>
+#include <stdexcept>
+#include <vector>
+
+#include "pipeline/fragment/test_func.h"
+#include "pipeline/fragment/write_mask.h"
+#include "pipeline/number/unorm.h"
+
+namespace ffsim {
+
+namespace {
+
+bool uses_src_factor(ChannelOp op) {
+  return op == ChannelOp::SrcTerm || op == ChannelOp::Add || op == ChannelOp::Sub || op == ChannelOp::RevSub;
+}
+bool uses_dst_factor(ChannelOp op) {
+  return op == ChannelOp::DstTerm || op == ChannelOp::Add || op == ChannelOp::Sub || op == ChannelOp::RevSub;
+}
+bool reads_dst(ChannelOp op, GLenum src_factor, int c) {
+  if (op == ChannelOp::Keep || op == ChannelOp::Zero || op == ChannelOp::Copy) return false;
+  if (op == ChannelOp::SrcTerm) {  // only the source factor can reference the destination
+    return src_factor == gl::DST_COLOR || src_factor == gl::ONE_MINUS_DST_COLOR || src_factor == gl::DST_ALPHA ||
+           src_factor == gl::ONE_MINUS_DST_ALPHA || (src_factor == gl::SRC_ALPHA_SATURATE && c != 3);
+  }
+  return true;
+}
+
+// What blending computes for channel c, with the trivial terms removed.
+ChannelOp blend_channel_op(GLenum eq, GLenum sf, GLenum df, int c) {
+  if (eq == gl::MIN) return ChannelOp::Min;
+  if (eq == gl::MAX) return ChannelOp::Max;
+  if (c == 3 && sf == gl::SRC_ALPHA_SATURATE) sf = gl::ONE;  // (f, f, f, 1)
+  const bool s = sf != gl::ZERO, d = df != gl::ZERO;
+  const ChannelOp src_only = sf == gl::ONE ? ChannelOp::Copy : ChannelOp::SrcTerm;
+  const ChannelOp dst_only = df == gl::ONE ? ChannelOp::Keep : ChannelOp::DstTerm;
+  if (eq == gl::FUNC_SUBTRACT) return !s ? ChannelOp::Zero : !d ? src_only : ChannelOp::Sub;
+  if (eq == gl::FUNC_REVERSE_SUBTRACT) return !d ? ChannelOp::Zero : !s ? dst_only : ChannelOp::RevSub;
+  if (!s && !d) return ChannelOp::Zero;
+  return !d ? src_only : !s ? dst_only : ChannelOp::Add;
+}
+
+std::uint32_t stencil_max_of(int bits) { return bits > 0 ? unorm_max(bits) : 0; }
+
+}  // namespace
+
+FragmentPlanKey fragment_plan_key(const FragmentOpsState& s, const FragmentTarget& t) {
+  FragmentPlanKey k;
+  k.arith = t.arith;
+  const bool fixed = t.arith == Arithmetic::Fixed;
+
+  const GLenum af = s.alpha.enabled ? s.alpha.func : gl::ALWAYS;
+
+  bool depth = s.depth.enabled && t.depth_bits > 0;
+  const GLenum df = depth ? s.depth.func : gl::ALWAYS;
+  const bool dw = depth && s.depth_mask;
+  if (depth && df == gl::ALWAYS && !dw) depth = false;  // passes everything, writes nothing
+
+  bool st = s.stencil.enabled && t.stencil_bits > 0;
+  GLenum sf = gl::ALWAYS, sfail = gl::KEEP, dpfail = gl::KEEP, dppass = gl::KEEP;
+  if (st) {
+    sf = s.stencil.func;
+    if ((s.stencil_writemask & stencil_max_of(t.stencil_bits)) != 0) {
+      sfail = s.stencil.sfail;
+      dpfail = s.stencil.dpfail;
+      dppass = s.stencil.dppass;
+    }
+    if (sf == gl::ALWAYS) sfail = gl::KEEP;
+    if (sf == gl::NEVER) dpfail = dppass = gl::KEEP;
+    if (!depth || df == gl::ALWAYS) dpfail = gl::KEEP;
+    if (depth && df == gl::NEVER) dppass = gl::KEEP;
+    if (sf == gl::ALWAYS && sfail == gl::KEEP && dpfail == gl::KEEP && dppass == gl::KEEP) st = false;
+  }
+  const bool stencil_writes = st && (sfail != gl::KEEP || dpfail != gl::KEEP || dppass != gl::KEEP);
+
+  const bool logic = s.logic.enabled && fixed;  // float colour has no bits to combine (numerics §9.6)
+  const bool blend = s.blend.enabled && !logic;  // §4.1.8: the logic op replaces blending
+  bool any_write = false, any_logic = false, any_src = false, any_dst = false;
+  for (int c = 0; c < 4; ++c) {
+    ChannelOp op = ChannelOp::Copy;
+    if (!s.color_mask[c]) op = ChannelOp::Keep;
+    else if (logic) op = s.logic.op == gl::COPY ? ChannelOp::Copy
+                       : s.logic.op == gl::NOOP ? ChannelOp::Keep
+                       : s.logic.op == gl::CLEAR ? ChannelOp::Zero
+                                                 : ChannelOp::Logic;
+    else if (blend) op = blend_channel_op(s.blend.equation, s.blend.src, s.blend.dst, c);
+    k.channel[c] = op;
+    any_write |= op != ChannelOp::Keep;
+    any_logic |= op == ChannelOp::Logic;
+    any_src |= uses_src_factor(op);
+    any_dst |= uses_dst_factor(op);
+  }
+
+  const bool discard_all = af == gl::NEVER || (st && sf == gl::NEVER && sfail == gl::KEEP) ||
+                           (depth && df == gl::NEVER && !st);
+  if (discard_all || (!any_write && !stencil_writes && !dw)) {
+    FragmentPlanKey none;
+    none.arith = t.arith;
+    none.nothing = true;
+    return none;
+  }
+  k.alpha_func = af == gl::ALWAYS ? 0 : af;
+  if (st) {
+    k.stencil = true;
+    k.stencil_func = sf;
+    k.sfail = sfail;
+    k.dpfail = dpfail;
+    k.dppass = dppass;
+  }
+  if (depth) {
+    k.depth = true;
+    k.depth_func = df;
+    k.depth_write = dw;
+  }
+  // The equation is part of each channel's operation; a factor is kept only if a
+  // channel's operation uses it.
+  if (any_src) k.blend_src = s.blend.src;
+  if (any_dst) k.blend_dst = s.blend.dst;
+  if (any_logic) k.logic_op = s.logic.op;
+  return k;
+}
+
+FragmentPlan build_fragment_plan(const FragmentPlanKey& key) {
+  FragmentPlan p;
+  p.key = key;
+  for (int c = 0; c < 4; ++c) {
+    p.write_color |= key.channel[c] != ChannelOp::Keep;
+    p.read_dst_color |= reads_dst(key.channel[c], key.blend_src, c);
+  }
+  return p;
+}
+
+FragmentConstants fragment_constants(const FragmentOpsState& s, const FragmentTarget& t) {
+  FragmentConstants k;
+  k.rect = write_rect(s.scissor, t.width, t.height);
+  k.color_bits = t.color_bits;
+  k.color_max = unorm_max(t.color_bits);
+  k.alpha_ref_code = alpha_ref_code(s.alpha.ref, t.color_bits);
+  k.alpha_ref_value = alpha_ref_value(s.alpha.ref, t.arith);
+  k.stencil_max = stencil_max_of(t.stencil_bits);
+  k.stencil_ref = stencil_ref_clamped(s.stencil.ref, k.stencil_max);
+  k.stencil_value_mask = s.stencil.value_mask & k.stencil_max;
+  k.stencil_writemask = s.stencil_writemask & k.stencil_max;
+  for (int c = 0; c < 4; ++c) {
+    const double v = clamp01(s.blend.color[c]);
+    k.blend_color_given[c] = v;
+    k.blend_color_code[c] = unorm_from_double(v, t.color_bits);
+    k.blend_color_value[c] = t.arith == Arithmetic::Float32 ? static_cast<double>(static_cast<float>(v)) : v;
+  }
+  return k;
+}
+
+// ---------------------------------------------------------------------------
+// The planned path.
+
+namespace {
+
+constexpr int kChunk = 256;  // fragments per pass over the stages (stack-sized mask)
+
+// Float colour stage for one channel (F = float for Float32, double for Float64),
+// per fragment.
+template <class F>
+void color_channel_float(const FragmentPlan& plan, const FragmentConstants& k, const FragmentSpan& sp,
+                         const FragmentBuffers& b, std::size_t row, int start, int n, const std::uint8_t* alive, int c,
+                         Arithmetic arith) {
+  F kc[4];
+  for (int q = 0; q < 4; ++q) kc[q] = static_cast<F>(k.blend_color_value[q]);
+  const GLenum sf = plan.key.blend_src, df = plan.key.blend_dst;
+  const ChannelOp op = plan.key.channel[c];
+  if (op == ChannelOp::Keep || op == ChannelOp::Logic) return;  // Logic never occurs on float colour
+  for (int j = 0; j < n; ++j) {
+    if (!alive[j]) continue;
+    const std::size_t i = static_cast<std::size_t>(start + j);
+    const std::size_t p = row + static_cast<std::size_t>(sp.x0 + start + j);
+    double* out = b.values + 4 * p;
+    if (op == ChannelOp::Copy) {
+      out[c] = store_float_color(sp.values[4 * i + c], arith);
+      continue;
+    }
+    F s[4], d[4] = {0, 0, 0, 0};
+    for (int q = 0; q < 4; ++q) s[q] = static_cast<F>(sp.values[4 * i + q]);
+    if (plan.read_dst_color)
+      for (int q = 0; q < 4; ++q) d[q] = static_cast<F>(out[q]);
+    F r = 0;
+    switch (op) {
+      case ChannelOp::Zero: r = 0; break;
+      case ChannelOp::SrcTerm: r = clamp01(s[c] * blend_factor<F>(sf, c, s, d, kc, F(1))); break;
+      case ChannelOp::DstTerm: r = clamp01(d[c] * blend_factor<F>(df, c, s, d, kc, F(1))); break;
+      case ChannelOp::Add:
+      case ChannelOp::Sub:
+      case ChannelOp::RevSub:
+        r = blend_value<F>(op == ChannelOp::Add ? gl::FUNC_ADD : op == ChannelOp::Sub ? gl::FUNC_SUBTRACT : gl::FUNC_REVERSE_SUBTRACT, s[c], blend_factor<F>(sf, c, s, d, kc, F(1)), d[c],
+                           blend_factor<F>(df, c, s, d, kc, F(1)));
+        break;
+      case ChannelOp::Min: r = clamp01(std::min(s[c], d[c])); break;
+      case ChannelOp::Max: r = clamp01(std::max(s[c], d[c])); break;
+      default: break;
+    }
+    out[c] = static_cast<double>(r);
+  }
+}
+
+// Fixed colour: a chunk of fragments de-interleaved into per-channel arrays, each
+// written channel computed by a loop specialised by its operation and factors,
+// then stored where the fragment survived. kM is the colour maximum M when known at
+// compile time (255: 32-bit arithmetic and division by a constant), 0 otherwise.
+template <std::uint32_t kM>
+struct FixedKernel {
+  using I = std::conditional_t<kM == 255, std::int32_t, std::int64_t>;
+  std::uint32_t M;
+  std::uint32_t src[4][kChunk];
+  std::uint32_t dst[4][kChunk];
+
+  std::uint32_t max() const { return kM ? kM : M; }
+
+  // Factor `f` for channel c of every fragment of the chunk.
+  void factor(GLenum f, int c, const std::uint32_t* kc, int n, std::uint32_t* out) const {
+    const std::uint32_t m = max();
+    switch (f) {
+      case gl::ZERO: std::fill_n(out, n, 0u); return;
+      case gl::ONE: std::fill_n(out, n, m); return;
+      case gl::SRC_COLOR: std::copy_n(src[c], n, out); return;
+      case gl::ONE_MINUS_SRC_COLOR: for (int j = 0; j < n; ++j) out[j] = m - src[c][j]; return;
+      case gl::DST_COLOR: std::copy_n(dst[c], n, out); return;
+      case gl::ONE_MINUS_DST_COLOR: for (int j = 0; j < n; ++j) out[j] = m - dst[c][j]; return;
+      case gl::SRC_ALPHA: std::copy_n(src[3], n, out); return;
+      case gl::ONE_MINUS_SRC_ALPHA: for (int j = 0; j < n; ++j) out[j] = m - src[3][j]; return;
+      case gl::DST_ALPHA: std::copy_n(dst[3], n, out); return;
+      case gl::ONE_MINUS_DST_ALPHA: for (int j = 0; j < n; ++j) out[j] = m - dst[3][j]; return;
+      case gl::CONSTANT_COLOR: std::fill_n(out, n, kc[c]); return;
+      case gl::ONE_MINUS_CONSTANT_COLOR: std::fill_n(out, n, m - kc[c]); return;
+      case gl::CONSTANT_ALPHA: std::fill_n(out, n, kc[3]); return;
+      case gl::ONE_MINUS_CONSTANT_ALPHA: std::fill_n(out, n, m - kc[3]); return;
+      case gl::SRC_ALPHA_SATURATE:
+        if (c == 3) std::fill_n(out, n, m);
+        else for (int j = 0; j < n; ++j) out[j] = std::min(src[3][j], m - dst[3][j]);
+        return;
+      default: std::fill_n(out, n, 0u); return;
+    }
+  }
+
+  // rnd(clamp01(v / M^2) * M) of the numerator v over M^2 (blend.h's blend_code),
+  // branch free: clamping v to [0, M^2] first gives 0 and M at the ends.
+  std::uint32_t finish(I v) const {
+    const I m = static_cast<I>(max());
+    v = v < 0 ? 0 : v;
+    v = v > m * m ? m * m : v;
+    return static_cast<std::uint32_t>((2 * v + m) / (2 * m));
+  }
+
+  void channel(const FragmentPlanKey& key, const std::uint32_t* kc, int c, int n, std::uint32_t* out) const {
+    const std::uint32_t m = max();
+    std::uint32_t S[kChunk], D[kChunk];
+    const std::uint32_t* cs = src[c];
+    const std::uint32_t* cd = dst[c];
+    switch (key.channel[c]) {
+      case ChannelOp::Keep: return;
+      case ChannelOp::Zero: std::fill_n(out, n, 0u); return;
+      case ChannelOp::Copy: std::copy_n(cs, n, out); return;
+      case ChannelOp::SrcTerm:
+        factor(key.blend_src, c, kc, n, S);
+        for (int j = 0; j < n; ++j) out[j] = finish(static_cast<I>(cs[j]) * static_cast<I>(S[j]));
+        return;
+      case ChannelOp::DstTerm:
+        factor(key.blend_dst, c, kc, n, D);
+        for (int j = 0; j < n; ++j) out[j] = finish(static_cast<I>(cd[j]) * static_cast<I>(D[j]));
+        return;
+      case ChannelOp::Add:
+        factor(key.blend_src, c, kc, n, S);
+        factor(key.blend_dst, c, kc, n, D);
+        for (int j = 0; j < n; ++j)
+          out[j] = finish(static_cast<I>(cs[j]) * static_cast<I>(S[j]) + static_cast<I>(cd[j]) * static_cast<I>(D[j]));
+        return;
+      case ChannelOp::Sub:
+        factor(key.blend_src, c, kc, n, S);
+        factor(key.blend_dst, c, kc, n, D);
+        for (int j = 0; j < n; ++j)
+          out[j] = finish(static_cast<I>(cs[j]) * static_cast<I>(S[j]) - static_cast<I>(cd[j]) * static_cast<I>(D[j]));
+        return;
+      case ChannelOp::RevSub:
+        factor(key.blend_src, c, kc, n, S);
+        factor(key.blend_dst, c, kc, n, D);
+        for (int j = 0; j < n; ++j)
+          out[j] = finish(static_cast<I>(cd[j]) * static_cast<I>(D[j]) - static_cast<I>(cs[j]) * static_cast<I>(S[j]));
+        return;
+      case ChannelOp::Min: for (int j = 0; j < n; ++j) out[j] = std::min(cs[j], cd[j]); return;
+      case ChannelOp::Max: for (int j = 0; j < n; ++j) out[j] = std::max(cs[j], cd[j]); return;
+      case ChannelOp::Logic: for (int j = 0; j < n; ++j) out[j] = logic_op(key.logic_op, cs[j], cd[j], m); return;
+    }
+  }
+};
+
+template <std::uint32_t kM>
+void color_stage_fixed(const FragmentPlan& plan, const FragmentConstants& k, const FragmentSpan& sp,
+                       const FragmentBuffers& b, std::size_t row, int start, int n, const std::uint8_t* alive) {
+  FixedKernel<kM> kern;
+  kern.M = k.color_max;
+  const std::uint16_t* in = sp.codes.data() + 4 * static_cast<std::size_t>(start);
+  std::uint16_t* px = b.codes + 4 * (row + static_cast<std::size_t>(sp.x0 + start));
+  for (int j = 0; j < n; ++j)
+    for (int q = 0; q < 4; ++q) kern.src[q][j] = in[4 * j + q];
+  if (plan.read_dst_color)
+    for (int j = 0; j < n; ++j)
+      for (int q = 0; q < 4; ++q) kern.dst[q][j] = px[4 * j + q];
+  const std::uint32_t* kc = k.blend_color_code.data();
+  std::uint32_t out[4][kChunk];
+  std::uint16_t wmask[4];
+  for (int c = 0; c < 4; ++c) {
+    const bool written = plan.key.channel[c] != ChannelOp::Keep;
+    wmask[c] = written ? 0xFFFF : 0;
+    if (written) kern.channel(plan.key, kc, c, n, out[c]);
+    else std::fill_n(out[c], n, 0u);
+  }
+  // Masked store: written channels of surviving fragments only.
+  for (int j = 0; j < n; ++j) {
+    const std::uint16_t a = alive[j] ? 0xFFFF : 0;
+    for (int c = 0; c < 4; ++c) {
+      const std::uint16_t m = a & wmask[c];
+      px[4 * j + c] = static_cast<std::uint16_t>((static_cast<std::uint16_t>(out[c][j]) & m) | (px[4 * j + c] & ~m));
+    }
+  }
+}
+
+void color_stage(const FragmentPlan& plan, const FragmentConstants& k, const FragmentSpan& sp, const FragmentBuffers& b,
+                 std::size_t row, int start, int n, const std::uint8_t* alive, Arithmetic arith) {
+  switch (arith) {
+    case Arithmetic::Fixed:
+      if (k.color_max == 255) color_stage_fixed<255>(plan, k, sp, b, row, start, n, alive);
+      else color_stage_fixed<0>(plan, k, sp, b, row, start, n, alive);
+      return;
+    case Arithmetic::Float32:
+      for (int c = 0; c < 4; ++c) color_channel_float<float>(plan, k, sp, b, row, start, n, alive, c, arith);
+      return;
+    case Arithmetic::Float64:
+      for (int c = 0; c < 4; ++c) color_channel_float<double>(plan, k, sp, b, row, start, n, alive, c, arith);
+      return;
+  }
+}
+
+void check_span(const FragmentSpan& sp, bool fixed) {
+  const std::size_t need = 4 * static_cast<std::size_t>(sp.count);
+  if ((fixed ? sp.codes.size() : sp.values.size()) < need)
+    throw std::invalid_argument("fragment span: fewer colour components than 4 x count");
+}
+
+}  // namespace
+
+void run_fragment_plan(const FragmentPlan& plan, const FragmentConstants& k, const FragmentSpan& sp,
+                       const FragmentBuffers& b, int width) {
+  const FragmentPlanKey& key = plan.key;
+  if (key.nothing) return;
+  const SpanRange range = scissor_span(k.rect, sp.y, sp.x0, sp.count);
+  if (range.empty()) return;
+  const bool fixed = key.arith == Arithmetic::Fixed;
+  check_span(sp, fixed);
+  if (key.depth && sp.depth.size() < static_cast<std::size_t>(sp.count))
+    throw std::invalid_argument("fragment span: the depth test is enabled but the span carries no depth");
+  const std::size_t row = static_cast<std::size_t>(sp.y) * static_cast<std::size_t>(width);
+  std::uint8_t alive[kChunk];
+  for (int start = range.begin; start < range.end; start += kChunk) {
+    const int n = std::min(kChunk, range.end - start);
+    std::fill_n(alive, n, std::uint8_t{1});
+    // Alpha test: A_s OP ref.
+    if (key.alpha_func != 0) {
+      const GLenum f = key.alpha_func;
+      if (fixed) {
+        for (int j = 0; j < n; ++j)
+          alive[j] = test_func<std::uint32_t>(f, sp.codes[4 * static_cast<std::size_t>(start + j) + 3], k.alpha_ref_code);
+      } else {
+        const bool f32 = key.arith == Arithmetic::Float32;
+        for (int j = 0; j < n; ++j) {
+          const double a = sp.values[4 * static_cast<std::size_t>(start + j) + 3];
+          alive[j] = test_func<double>(f, f32 ? static_cast<double>(static_cast<float>(a)) : a, k.alpha_ref_value);
+        }
+      }
+    }
+    // Stencil and depth tests with the stencil operations.
+    if (key.stencil || key.depth) {
+      const std::uint32_t ref = k.stencil_ref, vm = k.stencil_value_mask, wm = k.stencil_writemask, smax = k.stencil_max;
+      const std::uint32_t ref_m = ref & vm;
+      for (int j = 0; j < n; ++j) {
+        if (!alive[j]) continue;
+        const std::size_t p = row + static_cast<std::size_t>(sp.x0 + start + j);
+        if (key.stencil) {
+          const std::uint32_t old = b.stencil[p];
+          if (!test_func<std::uint32_t>(key.stencil_func, ref_m, old & vm)) {
+            b.stencil[p] = static_cast<std::uint8_t>(stencil_write(key.sfail, old, ref, smax, wm));
+            alive[j] = 0;
+            continue;
+          }
+        }
+        if (key.depth) {
+          const std::uint32_t z = sp.depth[static_cast<std::size_t>(start + j)];
+          if (!test_func<std::uint32_t>(key.depth_func, z, b.depth[p])) {
+            if (key.stencil) b.stencil[p] = static_cast<std::uint8_t>(stencil_write(key.dpfail, b.stencil[p], ref, smax, wm));
+            alive[j] = 0;
+            continue;
+          }
+          if (key.depth_write) b.depth[p] = z;
+        }
+        if (key.stencil) b.stencil[p] = static_cast<std::uint8_t>(stencil_write(key.dppass, b.stencil[p], ref, smax, wm));
+      }
+    }
+    // Blending / logic op, dithering (identity), masked colour writes.
+    if (plan.write_color) color_stage(plan, k, sp, b, row, start, n, alive, key.arith);
+  }
+}
+
+// ---------------------------------------------------------------------------
+// The full path: every stage, every fragment, every channel, read from the raw
+// state. The reference the plan is checked against.
+
+namespace {
+
+template <class T>
+void full_color_float(const FragmentOpsState& s, const FragmentConstants& k, const FragmentSpan& sp,
+                      const FragmentBuffers& b, int i, std::size_t p, Arithmetic arith) {
+  T sv[4], dv[4], kv[4];
+  for (int q = 0; q < 4; ++q) {
+    sv[q] = static_cast<T>(sp.values[4 * static_cast<std::size_t>(i) + q]);
+    dv[q] = static_cast<T>(b.values[4 * p + q]);
+    kv[q] = static_cast<T>(k.blend_color_value[q]);
+  }
+  double out[4];
+  for (int c = 0; c < 4; ++c) {
+    if (s.blend.enabled) {  // the logic op does not apply to float colour
+      const T S = blend_factor<T>(s.blend.src, c, sv, dv, kv, T(1));
+      const T D = blend_factor<T>(s.blend.dst, c, sv, dv, kv, T(1));
+      T r = blend_value<T>(s.blend.equation, sv[c], S, dv[c], D);
+      out[c] = static_cast<double>(clamp01(r));
+    } else {
+      out[c] = store_float_color(sp.values[4 * static_cast<std::size_t>(i) + c], arith);
+    }
+  }
+  for (int c = 0; c < 4; ++c)
+    if (s.color_mask[c]) b.values[4 * p + c] = out[c];
+}
+
+}  // namespace
+
+void run_fragment_ops_full(const FragmentOpsState& s, const FragmentTarget& t, const FragmentSpan& sp,
+                           const FragmentBuffers& b) {
+  const FragmentConstants k = fragment_constants(s, t);
+  const bool fixed = t.arith == Arithmetic::Fixed;
+  if (sp.count <= 0) return;
+  check_span(sp, fixed);
+  const bool has_stencil = t.stencil_bits > 0, has_depth = t.depth_bits > 0;
+  const std::uint32_t M = k.color_max;
+  for (int i = 0; i < sp.count; ++i) {
+    const std::int64_t x = std::int64_t{sp.x0} + i, y = sp.y;
+    // Pixel ownership: the window.
+    if (x < 0 || y < 0 || x >= t.width || y >= t.height) continue;
+    // Scissor test.
+    if (s.scissor.enabled && !(x >= s.scissor.x && x < std::int64_t{s.scissor.x} + s.scissor.width &&
+                               y >= s.scissor.y && y < std::int64_t{s.scissor.y} + s.scissor.height))
+      continue;
+    const std::size_t p = static_cast<std::size_t>(y) * static_cast<std::size_t>(t.width) + static_cast<std::size_t>(x);
+    // Alpha test.
+    if (s.alpha.enabled) {
+      bool pass;
+      if (fixed) pass = test_func<std::uint32_t>(s.alpha.func, sp.codes[4 * static_cast<std::size_t>(i) + 3], alpha_ref_code(s.alpha.ref, t.color_bits));
+      else {
+        double a = sp.values[4 * static_cast<std::size_t>(i) + 3];
+        if (t.arith == Arithmetic::Float32) a = static_cast<float>(a);
+        pass = test_func<double>(s.alpha.func, a, alpha_ref_value(s.alpha.ref, t.arith));
+      }
+      if (!pass) continue;
+    }
+    // Stencil test.
+    const bool st = s.stencil.enabled && has_stencil;
+    const std::uint32_t smax = k.stencil_max, ref = stencil_ref_clamped(s.stencil.ref, smax);
+    const std::uint32_t vm = s.stencil.value_mask & smax, wm = s.stencil_writemask & smax;
+    if (st) {
+      const std::uint32_t old = b.stencil[p];
+      if (!test_func<std::uint32_t>(s.stencil.func, ref & vm, old & vm)) {
+        b.stencil[p] = static_cast<std::uint8_t>(stencil_write(s.stencil.sfail, old, ref, smax, wm));
+        continue;
+      }
+    }
+    // Depth test.
+    if (s.depth.enabled && has_depth) {
+      if (sp.depth.size() < static_cast<std::size_t>(sp.count))
+        throw std::invalid_argument("fragment span: the depth test is enabled but the span carries no depth");
+      const std::uint32_t z = sp.depth[static_cast<std::size_t>(i)];
+      if (!test_func<std::uint32_t>(s.depth.func, z, b.depth[p])) {
+        if (st) b.stencil[p] = static_cast<std::uint8_t>(stencil_write(s.stencil.dpfail, b.stencil[p], ref, smax, wm));
+        continue;
+      }
+      if (s.depth_mask) b.depth[p] = z;
+    }
+    if (st) b.stencil[p] = static_cast<std::uint8_t>(stencil_write(s.stencil.dppass, b.stencil[p], ref, smax, wm));
+    // Blending or logic op, dithering, masked write.
+    if (fixed) {
+      std::uint32_t sv[4], dv[4], kv[4], out[4];
+      for (int q = 0; q < 4; ++q) {
+        sv[q] = sp.codes[4 * static_cast<std::size_t>(i) + q];
+        dv[q] = b.codes[4 * p + q];
+        kv[q] = k.blend_color_code[q];
+      }
+      for (int c = 0; c < 4; ++c) {
+        std::uint32_t r = sv[c];
+        if (s.logic.enabled) r = logic_op(s.logic.op, sv[c], dv[c], M);
+        else if (s.blend.enabled)
+          r = blend_code(s.blend.equation, sv[c], blend_factor<std::uint32_t>(s.blend.src, c, sv, dv, kv, M), dv[c],
+                         blend_factor<std::uint32_t>(s.blend.dst, c, sv, dv, kv, M), M);
+        out[c] = dither_code(r, t.color_bits, t.color_bits);
+      }
+      for (int c = 0; c < 4; ++c)
+        if (s.color_mask[c]) b.codes[4 * p + c] = static_cast<std::uint16_t>(out[c]);
+    } else if (t.arith == Arithmetic::Float32) {
+      full_color_float<float>(s, k, sp, b, i, p, t.arith);
+    } else {
+      full_color_float<double>(s, k, sp, b, i, p, t.arith);
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------
+// describe()
+
+namespace {
+
+std::string num(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.9g", v);
+  return buf;
+}
+
+std::string hex(std::uint32_t v) {
+  char buf[16];
+  std::snprintf(buf, sizeof buf, "0x%x", v);
+  return buf;
+}
+
+// '@' stands for the channel group's label (RGB, A, ...).
+std::string factor_text(GLenum f, int c) {
+  switch (f) {
+    case gl::ONE: return "";
+    case gl::SRC_COLOR: return "@_s";
+    case gl::ONE_MINUS_SRC_COLOR: return "(1 - @_s)";
+    case gl::DST_COLOR: return "@_d";
+    case gl::ONE_MINUS_DST_COLOR: return "(1 - @_d)";
+    case gl::SRC_ALPHA: return "A_s";
+    case gl::ONE_MINUS_SRC_ALPHA: return "(1 - A_s)";
+    case gl::DST_ALPHA: return "A_d";
+    case gl::ONE_MINUS_DST_ALPHA: return "(1 - A_d)";
+    case gl::CONSTANT_COLOR: return "@_c";
+    case gl::ONE_MINUS_CONSTANT_COLOR: return "(1 - @_c)";
+    case gl::CONSTANT_ALPHA: return "A_c";
+    case gl::ONE_MINUS_CONSTANT_ALPHA: return "(1 - A_c)";
+    case gl::SRC_ALPHA_SATURATE: return c == 3 ? "" : "min(A_s, 1 - A_d)";
+    default: return "0";
+  }
+}
+
+std::string term_text(const char* value, GLenum f, int c) {
+  const std::string ft = factor_text(f, c);
+  return ft.empty() ? std::string(value) : std::string(value) + "*" + ft;
+}
+
+std::string channel_template(const FragmentPlanKey& key, int c) {
+  const GLenum sf = key.blend_src, df = key.blend_dst;
+  switch (key.channel[c]) {
+    case ChannelOp::Keep: return "";
+    case ChannelOp::Zero: return "0";
+    case ChannelOp::Copy: return "@_s";
+    case ChannelOp::SrcTerm: return term_text("@_s", sf, c);
+    case ChannelOp::DstTerm: return term_text("@_d", df, c);
+    case ChannelOp::Add: return "min(1, " + term_text("@_s", sf, c) + " + " + term_text("@_d", df, c) + ")";
+    case ChannelOp::Sub: return "max(0, " + term_text("@_s", sf, c) + " - " + term_text("@_d", df, c) + ")";
+    case ChannelOp::RevSub: return "max(0, " + term_text("@_d", df, c) + " - " + term_text("@_s", sf, c) + ")";
+    case ChannelOp::Min: return "min(@_s, @_d)";
+    case ChannelOp::Max: return "max(@_s, @_d)";
+    case ChannelOp::Logic: {
+      std::string e = logic_op_expression(key.logic_op);
+      std::string out;
+      for (char ch : e) {
+        if (ch == 's') out += "@_s";
+        else if (ch == 'd') out += "@_d";
+        else out += ch;
+      }
+      return out + " (" + logic_op_name(key.logic_op) + ")";
+    }
+  }
+  return "";
+}
+
+std::string substitute(const std::string& t, const std::string& label) {
+  std::string out;
+  for (char ch : t) {
+    if (ch == '@') out += label;
+    else out += ch;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string describe(const FragmentPlan& plan, const FragmentConstants& k) {
+  const FragmentPlanKey& key = plan.key;
+  const bool fixed = key.arith == Arithmetic::Fixed;
+  std::string out = "per-fragment operations (";
+  out += fixed ? std::to_string(k.color_bits) + "-bit colour codes" : key.arith == Arithmetic::Float32 ? "binary32 colour" : "binary64 colour";
+  out += "):\n";
+  if (key.nothing) {
+    out += "  skipped: no fragment can change the framebuffer (every fragment is discarded, or every write is masked)\n";
+    return out;
+  }
+  const WriteRect& r = k.rect;
+  if (r.x1 <= r.x0 || r.y1 <= r.y0) out += "  scissor: empty rectangle, no fragment survives\n";
+  else out += "  scissor: x " + std::to_string(r.x0) + ".." + std::to_string(r.x1 - 1) + ", y " + std::to_string(r.y0) + ".." +
+              std::to_string(r.y1 - 1) + "\n";
+  if (key.alpha_func == 0) out += "  alpha test: skipped\n";
+  else {
+    out += std::string("  alpha test: pass if A_s ") + test_func_symbol(key.alpha_func) + " ";
+    out += fixed ? std::to_string(k.alpha_ref_code) + "/" + std::to_string(k.color_max) + " (ref " + num(k.alpha_ref_value) + ")"
+                 : num(k.alpha_ref_value);
+    out += "\n";
+  }
+  if (!key.stencil) out += "  stencil test: skipped\n";
+  else {
+    out += "  stencil test: ";
+    if (key.stencil_func == gl::ALWAYS) out += "always passes";
+    else if (key.stencil_func == gl::NEVER) out += "never passes";
+    else
+      out += std::string("pass if (") + std::to_string(k.stencil_ref) + " & " + hex(k.stencil_value_mask) + ") " +
+             test_func_symbol(key.stencil_func) + " (S & " + hex(k.stencil_value_mask) + ")";
+    std::vector<std::string> ops;  // only the ops that can run
+    if (key.stencil_func != gl::ALWAYS) ops.push_back(std::string("fail ") + stencil_op_name(key.sfail));
+    if (key.stencil_func != gl::NEVER) {
+      if (key.depth) ops.push_back(std::string("depth fail ") + stencil_op_name(key.dpfail));
+      ops.push_back(std::string("pass ") + stencil_op_name(key.dppass));
+    }
+    out += "; ops:";
+    for (std::size_t i = 0; i < ops.size(); ++i) out += (i ? ", " : " ") + ops[i];
+    out += "; write mask " + hex(k.stencil_writemask) + "\n";
+  }
+  if (!key.depth) out += "  depth test: skipped\n";
+  else out += std::string("  depth test: pass if z ") + test_func_symbol(key.depth_func) + " Z_d; " +
+              (key.depth_write ? "writes z" : "no depth write (mask)") + "\n";
+  if (!plan.write_color) out += "  colour: not written\n";
+  else {
+    // Group channels with the same expression: R, G and B always share one.
+    std::vector<std::pair<std::string, std::string>> groups;  // label, template
+    for (int c = 0; c < 4; ++c) {
+      const std::string t = channel_template(key, c);
+      if (t.empty()) continue;
+      bool merged = false;
+      for (auto& g : groups)
+        if (g.second == t) { g.first += "RGBA"[c]; merged = true; }
+      if (!merged) groups.push_back({std::string(1, "RGBA"[c]), t});
+    }
+    for (const auto& g : groups) out += "  colour: " + g.first + " = " + substitute(g.second, g.first) + "\n";
+    std::string kept;
+    for (int c = 0; c < 4; ++c)
+      if (key.channel[c] == ChannelOp::Keep) kept += "RGBA"[c];
+    if (!kept.empty()) out += "  colour: " + kept + " kept (masked, or the equation leaves the destination)\n";
+    const bool uses_constant = (key.blend_src >= gl::CONSTANT_COLOR && key.blend_src <= gl::ONE_MINUS_CONSTANT_ALPHA) ||
+                               (key.blend_dst >= gl::CONSTANT_COLOR && key.blend_dst <= gl::ONE_MINUS_CONSTANT_ALPHA);
+    if (uses_constant) {
+      out += "  blend colour: (" + num(k.blend_color_given[0]) + ", " + num(k.blend_color_given[1]) + ", " +
+             num(k.blend_color_given[2]) + ", " + num(k.blend_color_given[3]) + ")";
+      if (fixed)
+        out += " as codes (" + std::to_string(k.blend_color_code[0]) + ", " + std::to_string(k.blend_color_code[1]) + ", " +
+               std::to_string(k.blend_color_code[2]) + ", " + std::to_string(k.blend_color_code[3]) + ")";
+      out += "\n";
+    }
+    out += std::string("  destination colour read: ") + (plan.read_dst_color ? "yes" : "no") + "\n";
+    out += fixed ? "  rounding: exact, clamp to [0,1], round half up to " + std::to_string(k.color_bits) + " bits; dither: identity\n"
+                 : "  rounding: none (clamp to [0,1] only); dither: identity\n";
+  }
+  return out;
+}
+
+}  // namespace ffsim

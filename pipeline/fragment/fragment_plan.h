@@ -1,0 +1,135 @@
+// The per-fragment operations as a plan (docs/architecture.md "Skip what a scene
+// does not need"; GL 1.2.1 §4.1 order: ownership, scissor, alpha test, stencil
+// test, depth test, blending or logic op, dithering, masked writes).
+//
+// Per draw: the GL state (FragmentOpsState) and the buffer format (FragmentTarget)
+// are reduced to a canonical FragmentPlanKey (every bit that cannot change the
+// result cleared), and reference values, masks, the blend colour and the scissor
+// box go into FragmentConstants. The key determines a FragmentPlan holding only
+// the stages that do something; callers cache plans by key.
+//
+// Two paths write a span into the buffers:
+//  - run_fragment_plan: only the plan's stages, each a simple loop specialised by
+//    the plan (no destination colour read unless a channel needs it, no work on
+//    channels the colour mask discards or that keep the destination);
+//  - run_fragment_ops_full: the reference interpreter, every stage evaluated from
+//    the raw state for every fragment and every channel. Tests assert that both
+//    produce identical buffers.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <string>
+
+#include "pipeline/fragment/alpha_test.h"
+#include "pipeline/fragment/blend.h"
+#include "pipeline/fragment/depth.h"
+#include "pipeline/fragment/fragment_span.h"
+#include "pipeline/fragment/logic_op.h"
+#include "pipeline/fragment/scissor.h"
+#include "pipeline/fragment/stencil.h"
+#include "pipeline/fragment/test_func.h"
+#include "pipeline/fragment/write_mask.h"
+#include "pipeline/number/profile.h"
+
+namespace ffsim {
+
+struct FragmentOpsState {
+  ScissorBox scissor;
+  AlphaTestState alpha;
+  StencilState stencil;
+  DepthState depth;
+  BlendState blend;
+  LogicOpState logic;
+  bool dither = true;  // GL initial state; identity here (write_mask.h)
+  std::array<bool, 4> color_mask{true, true, true, true};
+  std::uint32_t stencil_writemask = 0xFFFFFFFFu;
+  bool depth_mask = true;
+  bool operator==(const FragmentOpsState&) const = default;
+};
+
+// The buffers' format: window size, colour arithmetic and widths.
+struct FragmentTarget {
+  int width = 0, height = 0;
+  Arithmetic arith = Arithmetic::Fixed;
+  int color_bits = 8;    // fixed colour code width
+  int stencil_bits = 8;  // 0: no stencil buffer
+  int depth_bits = 24;   // 0: no depth buffer
+};
+
+// The buffers (whole window, rows bottom to top, width pixels per row). Exactly
+// one of codes/values is used, by arithmetic; stencil/depth null when absent.
+struct FragmentBuffers {
+  std::uint16_t* codes = nullptr;  // 4 per pixel, fixed colour
+  double* values = nullptr;        // 4 per pixel, float colour
+  std::uint8_t* stencil = nullptr;
+  std::uint32_t* depth = nullptr;
+};
+
+// What a channel's final write computes (after blending/logic-op simplification).
+enum class ChannelOp : std::uint8_t {
+  Keep,    // not written (colour mask off, or the result is the destination)
+  Zero,    // constant 0 (e.g. FUNC_SUBTRACT with a ZERO source factor)
+  Copy,    // the source value
+  SrcTerm, // Cs*S alone
+  DstTerm, // Cd*D alone
+  Add,     // min(1, Cs*S + Cd*D)
+  Sub,     // max(0, Cs*S - Cd*D)
+  RevSub,  // max(0, Cd*D - Cs*S)
+  Min,
+  Max,
+  Logic,   // logic op on codes (fixed profiles)
+};
+
+// Canonical state key: only what selects the stages and their kernels. Fields of
+// inactive stages are zero; comparisons are by value.
+struct FragmentPlanKey {
+  Arithmetic arith = Arithmetic::Fixed;
+  bool nothing = false;  // no fragment can change any buffer (all other fields zero)
+  GLenum alpha_func = 0; // 0: no alpha test
+  bool stencil = false;
+  GLenum stencil_func = 0, sfail = 0, dpfail = 0, dppass = 0;
+  bool depth = false;
+  GLenum depth_func = 0;
+  bool depth_write = false;
+  std::array<ChannelOp, 4> channel{ChannelOp::Keep, ChannelOp::Keep, ChannelOp::Keep, ChannelOp::Keep};
+  GLenum blend_src = 0, blend_dst = 0;  // 0 when no channel's operation uses the factor
+  GLenum logic_op = 0;                                      // 0 when no channel uses the logic op
+  auto operator<=>(const FragmentPlanKey&) const = default;
+};
+
+// Per-draw numbers, kept out of the key.
+struct FragmentConstants {
+  WriteRect rect;                 // window intersected with the scissor box
+  int color_bits = 8;
+  std::uint32_t color_max = 255;  // M = 2^m - 1
+  std::uint32_t alpha_ref_code = 0;
+  double alpha_ref_value = 0;
+  std::uint32_t stencil_max = 0, stencil_ref = 0, stencil_value_mask = 0, stencil_writemask = 0;
+  std::array<std::uint32_t, 4> blend_color_code{0, 0, 0, 0};
+  std::array<double, 4> blend_color_value{0, 0, 0, 0};  // binary32-rounded for Float32
+  std::array<double, 4> blend_color_given{0, 0, 0, 0};
+};
+
+struct FragmentPlan {
+  FragmentPlanKey key;
+  bool read_dst_color = false;  // some written channel reads the destination colour
+  bool write_color = false;     // some channel is written
+};
+
+FragmentPlanKey fragment_plan_key(const FragmentOpsState& s, const FragmentTarget& t);
+FragmentPlan build_fragment_plan(const FragmentPlanKey& key);
+FragmentConstants fragment_constants(const FragmentOpsState& s, const FragmentTarget& t);
+
+// Apply the per-fragment operations to a span. The span's colour is codes at
+// t.color_bits (fixed) or values (float); its depth holds one code per fragment
+// and may be empty only when the plan has no depth test (else std::invalid_argument).
+void run_fragment_plan(const FragmentPlan& plan, const FragmentConstants& k, const FragmentSpan& span,
+                       const FragmentBuffers& b, int width);
+void run_fragment_ops_full(const FragmentOpsState& s, const FragmentTarget& t, const FragmentSpan& span,
+                           const FragmentBuffers& b);
+
+// The plan as text, one line per stage in GL order, with skipped stages named;
+// blending shown as equations with trivial terms removed (`A = max(0, A_s - A_d)`).
+std::string describe(const FragmentPlan& plan, const FragmentConstants& k);
+
+}  // namespace ffsim
