@@ -24,7 +24,7 @@ Framebuffer::Framebuffer(const FramebufferFormat& format) : fmt_(format) {
     fail("each side must be 1.." + std::to_string(kMaxFramebufferSide));
   if (static_cast<long long>(fmt_.width) * fmt_.height > kMaxFramebufferPixels)
     fail("more than " + std::to_string(kMaxFramebufferPixels) + " pixels");
-  if (fmt_.color_bits < kMinUnormBits || fmt_.color_bits > kMaxUnormBits) fail("color_bits must be 1..16");
+  if (fmt_.color_bits < kMinUnormBits || fmt_.color_bits > kMaxColorBits) fail("color_bits must be 1..16");
   if (fmt_.stencil_bits < 0 || fmt_.stencil_bits > 8) fail("stencil_bits must be 0..8");
   if (fmt_.depth_bits != 0 && fmt_.depth_bits != 16 && fmt_.depth_bits != 24) fail("depth_bits must be 0, 16 or 24");
   const std::size_t n = static_cast<std::size_t>(fmt_.width) * fmt_.height;

@@ -178,7 +178,7 @@ Image depth_image(const Framebuffer& fb) {
   Image im = Image::make(fb.width(), fb.height(), 1, SampleType::U16);
   const int bits = fb.format().depth_bits;
   for (std::size_t i = 0; i < im.u16.size(); ++i)
-    im.u16[i] = static_cast<std::uint16_t>(bits == 16 ? fb.depth()[i] : div_round_half_up(std::uint64_t{fb.depth()[i]} * 65535u, unorm_max(bits)));
+    im.u16[i] = static_cast<std::uint16_t>(unorm_convert(fb.depth()[i], bits, 16));
   return im;
 }
 

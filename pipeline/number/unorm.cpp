@@ -18,7 +18,7 @@ std::uint32_t unorm_from_double(double x, int bits) {
   const double f = std::frexp(x, &e);  // x = f * 2^e, f in [0.5, 1)
   const auto mant = static_cast<std::uint64_t>(std::ldexp(f, 53));
   const int s = 53 - e;  // >= 54 because x < 1 => e <= 0
-  if (s >= 120) return 0;  // x*m < 2^(53+16-120): far below 1/2
+  if (s >= 120) return 0;  // x*m < 2^(53+24-120): far below 1/2
   const u128 p = static_cast<u128>(mant) * m + (static_cast<u128>(1) << (s - 1));
   return static_cast<std::uint32_t>(p >> s);
 }

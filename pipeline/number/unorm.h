@@ -10,7 +10,10 @@
 namespace ffsim {
 
 inline constexpr int kMinUnormBits = 1;
-inline constexpr int kMaxUnormBits = 16;
+// Conversions support up to 24 bits (the depth buffer); colour and texture
+// storage is at most 16 bits (kMaxColorBits).
+inline constexpr int kMaxUnormBits = 24;
+inline constexpr int kMaxColorBits = 16;
 
 // 2^N - 1, the code of 1.0.
 constexpr std::uint32_t unorm_max(int bits) { return (std::uint32_t{1} << bits) - 1u; }

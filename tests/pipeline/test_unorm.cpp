@@ -86,6 +86,21 @@ TEST_CASE("unorm: float -> fixed equals the exact rational rounding on a dense s
   }
 }
 
+TEST_CASE("unorm: 24-bit conversions (depth codes) are exact") {
+  // For x = i / 2^20 the exact rule is (2*i*m + 2^20) / 2^21 with m = 2^24 - 1.
+  const std::uint64_t m = unorm_max(24);
+  CHECK(m == 16777215u);
+  for (std::uint64_t i = 0; i <= (1u << 20); i += 13) {
+    const double x = std::ldexp(static_cast<double>(i), -20);
+    REQUIRE(unorm_from_double(x, 24) == (2 * i * m + (1u << 20)) / (1u << 21));
+  }
+  CHECK(unorm_from_double(0.5, 24) == (m + 1) / 2);  // exact tie rounds up
+  for (std::uint32_t k : {0u, 1u, 4096u, 8388607u, 16777215u}) CHECK(unorm_from_double(unorm_to_double(k, 24), 24) == k);
+  CHECK(unorm_convert(65535, 16, 24) == 16777215u);
+  CHECK(unorm_convert(255, 8, 24) == 16777215u);  // 8 divides 24: k * 65793
+  CHECK(unorm_convert(1, 8, 24) == 65793u);
+}
+
 TEST_CASE("unorm: widening 8 -> 16 -> 8 is the identity and 8 -> 16 is k * 257") {
   for (std::uint32_t k = 0; k <= 255; ++k) {
     const std::uint32_t w = unorm_convert(k, 8, 16);
