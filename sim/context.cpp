@@ -55,6 +55,8 @@ bool Context::set_capability(GLenum cap, bool on, const char* function) {
 
 
     // ==== [issue 5] capabilities ====
+    case gl::REGISTER_COMBINERS_NV: combiners_.enabled = on; combiner_plan_.reset(); return true;
+    case gl::PER_STAGE_CONSTANTS_NV: combiners_.per_stage_constants = on; combiner_plan_.reset(); return true;
 
 
     default:
@@ -78,6 +80,8 @@ bool Context::isEnabled(GLenum cap) {
 
 
     // ==== [issue 5] capabilities ====
+    case gl::REGISTER_COMBINERS_NV: return combiners_.enabled;
+    case gl::PER_STAGE_CONSTANTS_NV: return combiners_.per_stage_constants;
 
 
     default:
