@@ -19,6 +19,7 @@ struct VariableState {
   GLenum input = gl::ZERO;
   GLenum mapping = gl::UNSIGNED_IDENTITY_NV;
   GLenum component_usage = gl::RGB;
+  bool operator==(const VariableState&) const = default;
 };
 
 // One portion (RGB or ALPHA) of a general combiner stage.
@@ -32,6 +33,7 @@ struct PortionState {
   bool ab_dot_product = false;
   bool cd_dot_product = false;
   bool mux_sum = false;
+  bool operator==(const PortionState&) const = default;
 };
 
 struct GeneralStageState {
@@ -39,6 +41,7 @@ struct GeneralStageState {
   // RC2 per-stage constants s#ccc0, s#ccc1 (clamped to [0,1] when specified).
   std::array<double, 4> constant_color0{0, 0, 0, 0};
   std::array<double, 4> constant_color1{0, 0, 0, 0};
+  bool operator==(const GeneralStageState&) const = default;
 };
 
 struct CombinerState {
@@ -51,6 +54,7 @@ struct CombinerState {
   std::array<double, 4> constant_color1{0, 0, 0, 0};
   std::array<GeneralStageState, kMaxGeneralCombiners> stages = initial_stages();
   std::array<VariableState, 7> final_var = initial_final();  // A .. G
+  bool operator==(const CombinerState&) const = default;
 
   // RC Table NV_register_combiners.5 (as corrected on October 31, 2000).
   static std::array<GeneralStageState, kMaxGeneralCombiners> initial_stages() {
