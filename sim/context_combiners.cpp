@@ -42,7 +42,7 @@ static bool set_combiner_parameter(Context& ctx, CombinerState& s, const char* f
       return true;
     }
     case gl::NUM_GENERAL_COMBINERS_NV: {
-      const double n = std::nearbyint(p.v[0]);
+      const double n = std::round(p.v[0]);  // a float count rounds to nearest, half away from zero
       const int max = ctx.profile().general_combiners;
       // RC §3.8.12.1: less than one or greater than MAX_GENERAL_COMBINERS_NV is an
       // error (the Errors section's "greater or equal" contradicts the body; choice #27).

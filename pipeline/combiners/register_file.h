@@ -60,14 +60,16 @@ struct RegisterSet {
 // Per-fragment inputs of the combiners, as spans (struct of arrays). Colours and
 // texels are RGBA, 4 values per fragment; the fog factor is 1 value per fragment.
 // A nullptr means "absent": secondary colour (0,0,0,0), fog factor (fog disabled:
-// FOG alpha = 1), texture unit (disabled: register undefined -> 0).
+// FOG alpha = 1), texture unit (disabled: register undefined -> 0). Inputs the plan
+// does not read (CombinerPlan::*_needed) are never touched and may be nullptr;
+// the primary colour must be given when plan.primary_needed.
 //
 // Fixed profiles: unsigned codes (colours and fog factor at Profile::color_bits,
 // texels at Profile::texture_bits). Float profiles: values in [0,1].
 template <class V>
 struct CombinerInputs {
   int count = 0;
-  const V* primary = nullptr;    // required
+  const V* primary = nullptr;
   const V* secondary = nullptr;
   const V* fog_factor = nullptr;
   std::array<const V*, 4> texture{};  // TEXTURE0_ARB .. TEXTURE3_ARB

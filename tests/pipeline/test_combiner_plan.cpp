@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <random>
+#include <string>
 #include <vector>
 
 #include "combiner_test_support.h"
@@ -275,4 +276,21 @@ TEST_CASE("combiner plan: constants and fog colour enter as 8-bit codes, 0.5 -> 
   f.fog = true;
   f.fog_factor = 40;
   CHECK(test::shade_one(plan_combiners(s, test::geforce_config()), f)[3] == 40);
+}
+
+TEST_CASE("combiner registers: texture register components by base format (RC Table NV_register_combiners.2)") {
+  const std::uint16_t c[4] = {10, 20, 30, 40};
+  using A = std::array<std::uint16_t, 4>;
+  CHECK(texture_register_rgba<std::uint16_t>(BaseFormat::Alpha, c, 255) == A{0, 0, 0, 10});
+  CHECK(texture_register_rgba<std::uint16_t>(BaseFormat::Luminance, c, 255) == A{10, 10, 10, 255});
+  CHECK(texture_register_rgba<std::uint16_t>(BaseFormat::LuminanceAlpha, c, 255) == A{10, 10, 10, 20});
+  CHECK(texture_register_rgba<std::uint16_t>(BaseFormat::Intensity, c, 255) == A{10, 10, 10, 10});
+  CHECK(texture_register_rgba<std::uint16_t>(BaseFormat::RGB, c, 255) == A{10, 20, 30, 255});
+  CHECK(texture_register_rgba<std::uint16_t>(BaseFormat::RGBA, c, 255) == A{10, 20, 30, 40});
+}
+
+TEST_CASE("combiner registers: register names and indices round trip") {
+  for (int i = 0; i <= kSpare0PlusSecondary; ++i) CHECK(register_index(register_enum(i)) == i);
+  CHECK(register_index(gl::DISCARD_NV) == -1);
+  CHECK(std::string(register_short_name(kTexture1)) == "tex1");
 }
