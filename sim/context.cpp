@@ -68,6 +68,8 @@ bool Context::set_capability(GLenum cap, bool on, const char* function) {
     case gl::COLOR_LOGIC_OP: logic_op_.enabled = on; return true;
 
     // ==== [issue 5] capabilities ====
+    case gl::REGISTER_COMBINERS_NV: combiners_.enabled = on; combiner_plan_.reset(); return true;
+    case gl::PER_STAGE_CONSTANTS_NV: combiners_.per_stage_constants = on; combiner_plan_.reset(); return true;
 
 
     default:
@@ -104,6 +106,8 @@ bool Context::isEnabled(GLenum cap) {
     case gl::COLOR_LOGIC_OP: return logic_op_.enabled;
 
     // ==== [issue 5] capabilities ====
+    case gl::REGISTER_COMBINERS_NV: return combiners_.enabled;
+    case gl::PER_STAGE_CONSTANTS_NV: return combiners_.per_stage_constants;
 
 
     default:

@@ -19,6 +19,7 @@
 
 #include <map>
 
+#include "pipeline/combiners/combiner_plan.h"
 #include "pipeline/fragment/fragment_plan.h"
 #include "pipeline/fragment/fragment_span.h"
 #include "pipeline/geometry/clip.h"
@@ -309,6 +310,36 @@ class Context {
 
 
   // ==== [issue 5] register combiners ====
+  // NV_register_combiners / NV_register_combiners2 (sim/context_combiners.cpp).
+  // Enable/Disable REGISTER_COMBINERS_NV and PER_STAGE_CONSTANTS_NV go through enable().
+  void combinerParameterfv(GLenum pname, const float* params);
+  void combinerParameterf(GLenum pname, float param);
+  void combinerParameteriv(GLenum pname, const std::int32_t* params);
+  void combinerParameteri(GLenum pname, std::int32_t param);
+  void combinerInput(GLenum stage, GLenum portion, GLenum variable, GLenum input, GLenum mapping,
+                     GLenum componentUsage);
+  void combinerOutput(GLenum stage, GLenum portion, GLenum abOutput, GLenum cdOutput, GLenum sumOutput, GLenum scale,
+                      GLenum bias, bool abDotProduct, bool cdDotProduct, bool muxSum);
+  void finalCombinerInput(GLenum variable, GLenum input, GLenum mapping, GLenum componentUsage);
+  void combinerStageParameterfv(GLenum stage, GLenum pname, const float* params);
+  void getCombinerInputParameterfv(GLenum stage, GLenum portion, GLenum variable, GLenum pname, float* params);
+  void getCombinerInputParameteriv(GLenum stage, GLenum portion, GLenum variable, GLenum pname, std::int32_t* params);
+  void getCombinerOutputParameterfv(GLenum stage, GLenum portion, GLenum pname, float* params);
+  void getCombinerOutputParameteriv(GLenum stage, GLenum portion, GLenum pname, std::int32_t* params);
+  void getFinalCombinerInputParameterfv(GLenum variable, GLenum pname, float* params);
+  void getFinalCombinerInputParameteriv(GLenum variable, GLenum pname, std::int32_t* params);
+  void getCombinerStageParameterfv(GLenum stage, GLenum pname, float* params);
+  // All combiner state (NUM_GENERAL_COMBINERS_NV, COLOR_SUM_CLAMP_NV, constants, ...).
+  const combiners::CombinerState& combiner_state() const { return combiners_; }
+  // The plan for the current combiner state and profile (cached; rebuilt after any
+  // combiner state change). The rasterizer shades a span with
+  // combiners::shade_span(ctx.combiner_plan(), inputs, fog_color, out).
+  const combiners::CombinerPlan& combiner_plan();
+  // Arithmetic switches that are not GL state (docs/numerics.md §10).
+  void set_combiner_rounding(combiners::CombinerRounding r);
+  void set_combiner_rc2_secondary_alpha(bool on);
+  // The active combiner setup as equations (for --explain).
+  std::string describe_combiners();
 
 
   // ==== [issue 6] traces: hooks ====
@@ -433,6 +464,10 @@ class Context {
 
 
   // ==== [issue 5] state ====
+  combiners::CombinerState combiners_;
+  combiners::CombinerRounding combiner_rounding_ = combiners::CombinerRounding::PerStage;
+  bool combiner_rc2_secondary_alpha_ = false;
+  std::unique_ptr<combiners::CombinerPlan> combiner_plan_;  // cache; reset by every combiner state change
 
 
   // ==== [issue 6] state ====
