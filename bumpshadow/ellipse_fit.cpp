@@ -1,5 +1,7 @@
 #include "bumpshadow/ellipse_fit.h"
 
+#include "bumpshadow/detmath.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -40,7 +42,7 @@ struct Scorer {
   int n;
   double w;
   double operator()(const P& p) const {
-    const double c = std::cos(p[2]), s = std::sin(p[2]);
+    const double c = det::cos(p[2]), s = det::sin(p[2]);
     const double irx = 1 / (p[3] * p[3]), iry = 1 / (p[4] * p[4]);
     double lit_in = 0, sh_in = 0;
     for (int k = 0; k < n; ++k) {
@@ -56,8 +58,8 @@ Ellipse to_ellipse(const P& p) {
   Ellipse e;
   e.cx = p[0];
   e.cy = p[1];
-  e.ax = std::cos(p[2]);
-  e.ay = std::sin(p[2]);
+  e.ax = det::cos(p[2]);
+  e.ay = det::sin(p[2]);
   e.rx = p[3];
   e.ry = p[4];
   return e;
@@ -114,7 +116,7 @@ FitResult fit_ellipse(const double* px, const double* py, const std::uint8_t* li
   sxx /= r.n_lit, sxy /= r.n_lit, syy /= r.n_lit;
   const double mid = 0.5 * (sxx + syy), rad = std::sqrt(0.25 * (sxx - syy) * (sxx - syy) + sxy * sxy);
   const double l1 = mid + rad, l2 = std::max(0.0, mid - rad);
-  const double ang = (sxy == 0 && sxx == syy) ? 0.0 : 0.5 * std::atan2(2 * sxy, sxx - syy);  // major axis
+  const double ang = (sxy == 0 && sxx == syy) ? 0.0 : 0.5 * det::atan2(2 * sxy, sxx - syy);  // major axis
   const double rmin = o.min_radius;
   P p{mx, my, ang, std::max(2 * std::sqrt(l1), rmin), std::max(2 * std::sqrt(l2), rmin)};
   if (r.n_lit < o.min_lit) r.kind = TexelKind::FewLit;

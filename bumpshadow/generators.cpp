@@ -1,5 +1,7 @@
 #include "bumpshadow/generators.h"
 
+#include "bumpshadow/detmath.h"
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -157,7 +159,7 @@ HeightField gen_ridges(const Args& a) {
   check_size(w, h);
   const double period = a.num("period", 2, 1e4), width = a.num("width", 0.5, 1e4), height = a.num("height", 0, 1e4);
   const double ang = a.num("angle", -360, 360) * std::numbers::pi / 180.0;
-  const double nx = std::cos(ang), ny = std::sin(ang);  // across-ridge direction
+  const double nx = det::cos(ang), ny = det::sin(ang);  // across-ridge direction
   std::vector<double> z(static_cast<std::size_t>(w) * h, 0.0);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
@@ -192,10 +194,10 @@ HeightField gen_craters(const Args& a) {
         } else if (x < 0 || y < 0 || x >= w || y >= h) {
           continue;
         }
-        const double rr = std::hypot(xx - cx, yy - cy) / R;
+        const double rr = std::sqrt((xx - cx) * (xx - cx) + (yy - cy) * (yy - cy)) / R;
         double v = 0;
         if (rr < 1) v = (d + rim) * rr * rr - d;                  // bowl: -d at the centre, +rim at the edge
-        else if (rr < 1.6) v = rim * std::pow((1.6 - rr) / 0.6, 2);  // rim falling to 0 at 1.6 R
+        else if (rr < 1.6) v = rim * ((1.6 - rr) / 0.6) * ((1.6 - rr) / 0.6);  // rim falling to 0 at 1.6 R
         z[static_cast<std::size_t>(y) * w + x] += v;
       }
   }

@@ -1,5 +1,7 @@
 #include "bumpshadow/horizon.h"
 
+#include "bumpshadow/detmath.h"
+
 #include <cmath>
 #include <numbers>
 
@@ -17,8 +19,8 @@ HorizonMap compute_horizon_map(const HeightField& hf, int azimuths, const MarchO
   std::vector<double> c(azimuths), s(azimuths);
   for (int k = 0; k < azimuths; ++k) {
     const double phi = 2 * std::numbers::pi * k / azimuths;
-    c[k] = std::cos(phi);
-    s[k] = std::sin(phi);
+    c[k] = det::cos(phi);
+    s[k] = det::sin(phi);
   }
   parallel_rows(
       h.height, threads,
@@ -26,7 +28,7 @@ HorizonMap compute_horizon_map(const HeightField& hf, int azimuths, const MarchO
         for (int x = 0; x < h.width; ++x)
           for (int k = 0; k < azimuths; ++k)
             h.elevation[(static_cast<std::size_t>(y) * h.width + x) * azimuths + k] =
-                std::atan(horizon_tan(hf, x, y, c[k], s[k], m));
+                det::atan(horizon_tan(hf, x, y, c[k], s[k], m));
       },
       progress);
   return h;
@@ -47,15 +49,15 @@ double horizon_elevation(const HorizonMap& h, int x, int y, double phi) {
 double penumbra_fraction(double a) {
   if (a <= -1) return 0.0;
   if (a >= 1) return 1.0;
-  return 0.5 + (std::asin(a) + a * std::sqrt(1 - a * a)) / std::numbers::pi;
+  return 0.5 + (det::asin(a) + a * std::sqrt(1 - a * a)) / std::numbers::pi;
 }
 
 double horizon_light(const HorizonMap& h, int x, int y, const Vec3& l, double diameter) {
   if (!(l.z > 0)) return 0.0;
   const double r = std::sqrt(l.x * l.x + l.y * l.y);
   if (r == 0) return 1.0;
-  const double elev = std::atan2(l.z, r);
-  const double beta = horizon_elevation(h, x, y, std::atan2(l.y, l.x));
+  const double elev = det::atan2(l.z, r);
+  const double beta = horizon_elevation(h, x, y, det::atan2(l.y, l.x));
   if (diameter <= 0) return elev >= beta ? 1.0 : 0.0;
   return penumbra_fraction((elev - beta) / (0.5 * diameter));
 }

@@ -1,5 +1,7 @@
 #include "bumpshadow/reference.h"
 
+#include "bumpshadow/detmath.h"
+
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -33,12 +35,12 @@ double reference_visible_fraction(const HeightField& hf, int i, int j, const Vec
   if (r > 1e-12) U = {-L.z * L.x / r, -L.z * L.y / r, r};
   else U = {1, 0, 0};
   const Vec3 V{L.y * U.z - L.z * U.y, L.z * U.x - L.x * U.z, L.x * U.y - L.y * U.x};
-  const double R = std::tan(0.5 * diameter);
+  const double R = det::tan(0.5 * diameter);
   const double golden = std::numbers::pi * (3 - std::sqrt(5.0));
   int lit = 0;
   for (int k = 0; k < samples; ++k) {
     const double rad = R * std::sqrt((k + 0.5) / samples), ang = k * golden;
-    const double a = rad * std::cos(ang), b = rad * std::sin(ang);
+    const double a = rad * det::cos(ang), b = rad * det::sin(ang);
     lit += reference_lit(hf, i, j, {L.x + a * U.x + b * V.x, L.y + a * U.y + b * V.y, L.z + a * U.z + b * V.z}, m);
   }
   return static_cast<double>(lit) / samples;

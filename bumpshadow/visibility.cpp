@@ -1,5 +1,7 @@
 #include "bumpshadow/visibility.h"
 
+#include "bumpshadow/detmath.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -62,7 +64,7 @@ RaySet make_ray_set(const RayOptions& o) {
   r.py.resize(n);
   for (int a = 0; a < o.azimuths; ++a) {
     const double phi = 2 * std::numbers::pi * (a + u01(hash_u64(o.seed, 0xA2u, static_cast<std::uint64_t>(a)))) / o.azimuths;
-    const double c = std::cos(phi), s = std::sin(phi);
+    const double c = det::cos(phi), s = det::sin(phi);
     r.cos_az.push_back(c);
     r.sin_az.push_back(s);
     for (int e = 0; e < o.elevations; ++e) {
