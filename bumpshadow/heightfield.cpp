@@ -28,6 +28,40 @@ HeightField::HeightField(int width, int height, std::vector<double> heights, Bor
       throw HeightFieldError("non-finite height at x=" + std::to_string(i % w_) + " y=" + std::to_string(i / w_));
   zmax_ = *std::max_element(z_.begin(), z_.end());
   zmin_ = *std::min_element(z_.begin(), z_.end());
+  // Separable sliding maximum over [-R, R + 1] in x, then in y.
+  constexpr int R = kBlockRadius;
+  std::vector<double> mx(z_.size());
+  for (int y = 0; y < h_; ++y)
+    for (int x = 0; x < w_; ++x) {
+      double m = at(x - R, y);
+      for (int d = -R + 1; d <= R + 1; ++d) m = std::max(m, at(x + d, y));
+      mx[static_cast<std::size_t>(y) * w_ + x] = m;
+    }
+  auto mx_at = [&](int x, int y) {
+    if (border_ == Border::Wrap) y = ((y % h_) + h_) % h_;
+    else y = std::clamp(y, 0, h_ - 1);
+    return mx[static_cast<std::size_t>(y) * w_ + x];
+  };
+  block_.resize(z_.size());
+  for (int y = 0; y < h_; ++y)
+    for (int x = 0; x < w_; ++x) {
+      double m = mx_at(x, y - R);
+      for (int d = -R + 1; d <= R + 1; ++d) m = std::max(m, mx_at(x, y + d));
+      block_[static_cast<std::size_t>(y) * w_ + x] = m;
+    }
+}
+
+double HeightField::block_max(int x, int y) const {
+  // Wrap: the window of x mod w holds the same texels. Clamp: the window of the
+  // clamped coordinate contains the clamped image of the window of x.
+  if (border_ == Border::Wrap) {
+    x = ((x % w_) + w_) % w_;
+    y = ((y % h_) + h_) % h_;
+  } else {
+    x = std::clamp(x, 0, w_ - 1);
+    y = std::clamp(y, 0, h_ - 1);
+  }
+  return block_[static_cast<std::size_t>(y) * w_ + x];
 }
 
 double HeightField::at(int x, int y) const {

@@ -40,6 +40,12 @@ class HeightField {
   // Bilinear interpolation at the continuous point (x, y), border rule applied.
   double sample(double x, double y) const;
   double max_height() const { return zmax_; }
+  // Upper bound of every bilinear sample whose floor coordinates (fx, fy) lie
+  // within kBlockRadius of (x, y) in each coordinate: the maximum height of the
+  // texels [x - R, x + R + 1] x [y - R, y + R + 1] (border rule applied). Lets the
+  // horizon march skip stretches that cannot raise the horizon (visibility.cpp).
+  static constexpr int kBlockRadius = 8;
+  double block_max(int x, int y) const;
   double min_height() const { return zmin_; }
   const std::vector<double>& data() const { return z_; }
   // Content hash (FNV-1a 64 over size, border and the binary64 heights, -0 as +0).
@@ -52,6 +58,7 @@ class HeightField {
   std::vector<double> z_;
   Border border_;
   double zmax_ = 0, zmin_ = 0;
+  std::vector<double> block_;  // block_max of every texel, row-major
 };
 
 // FNV-1a 64 (offset basis 0xcbf29ce484222325, prime 0x100000001b3): the same

@@ -14,7 +14,13 @@ namespace ffsim::bumpshadow {
 
 const char* distribution_name(RayDistribution d) { return d == RayDistribution::Cosine ? "cosine" : "uniform"; }
 
-double horizon_tan(const HeightField& hf, int i, int j, double c, double s, const MarchOptions& m) {
+namespace {
+
+// The march of horizon_tan; with skip, stretches whose block bound cannot raise
+// the maximum are jumped over. Skipping never changes the result: every skipped
+// sample z satisfies (z - z0)/t <= H (block_max is an upper bound, widened by a
+// tolerance that covers bilinear rounding), so the maximum is the same.
+double march(const HeightField& hf, int i, int j, double c, double s, const MarchOptions& m, bool skip) {
   const double z0 = hf.at(i, j);
   const double headroom = hf.max_height() - z0;
   double best = 0.0;
@@ -23,6 +29,7 @@ double horizon_tan(const HeightField& hf, int i, int j, double c, double s, cons
   const double maxd = m.max_distance > 0 ? m.max_distance : static_cast<double>(std::max(w, h));
   const bool clamp = hf.border() == Border::Clamp;
   const bool moves_x = std::abs(c) > 1e-12, moves_y = std::abs(s) > 1e-12;
+  const double reach = HeightField::kBlockRadius - 1;  // samples within this distance share the bound
   for (long k = 1;; ++k) {
     const double t = static_cast<double>(k) * m.step;
     if (t > maxd) break;
@@ -36,10 +43,27 @@ double horizon_tan(const HeightField& hf, int i, int j, double c, double s, cons
         break;
       }
     }
+    if (skip) {
+      const double bound = hf.block_max(static_cast<int>(std::floor(x)), static_cast<int>(std::floor(y)));
+      if ((bound + 1e-9 * (1 + std::abs(bound)) - z0) / t <= best) {
+        k = std::max(k, static_cast<long>(std::floor((t + reach) / m.step)));  // next k samples beyond t + reach
+        continue;
+      }
+    }
     best = std::max(best, (hf.sample(x, y) - z0) / t);
     if (headroom / t <= best) break;
   }
   return best;
+}
+
+}  // namespace
+
+double horizon_tan_unaccelerated(const HeightField& hf, int i, int j, double c, double s, const MarchOptions& m) {
+  return march(hf, i, j, c, s, m, false);
+}
+
+double horizon_tan(const HeightField& hf, int i, int j, double c, double s, const MarchOptions& m) {
+  return march(hf, i, j, c, s, m, true);
 }
 
 RayOptions rays_for_count(int n) {

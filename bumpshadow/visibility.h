@@ -24,7 +24,11 @@ struct MarchOptions {
 // (c, s) (unit): max(0, max_k (z(p_k) - z0) / t_k). Marching stops early once no
 // sample can raise the maximum ((zmax - z0) / t <= H), at max_distance, or (clamp
 // borders) once the march has left the sampled area in every moving coordinate.
+// Stretches of the march that HeightField::block_max proves unable to raise the
+// maximum are skipped; the result is bit-identical to the plain march
+// (horizon_tan_unaccelerated, kept as the reference and tested against it).
 double horizon_tan(const HeightField& hf, int i, int j, double c, double s, const MarchOptions& m);
+double horizon_tan_unaccelerated(const HeightField& hf, int i, int j, double c, double s, const MarchOptions& m);
 
 enum class RayDistribution {
   Cosine,   // uniform over the projected unit disc (cosine-weighted solid angle), default

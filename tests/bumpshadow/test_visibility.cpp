@@ -184,3 +184,24 @@ TEST_CASE("visibility: soft reference and Max's penumbra agree on a long ridge")
   // Hard horizon test equals the binary reference on the tabulated azimuth.
   for (int d = 1; d < 16; ++d) CHECK((horizon_light(hm, x0 + d, 1, L) == 1.0) == reference_lit(f, x0 + d, 1, L));
 }
+
+TEST_CASE("visibility: the block-skipping march gives bit-identical horizons") {
+  const HeightField fields[] = {generate("fractal", {{"w", "40"}, {"h", "24"}}),
+                                generate("craters", {{"w", "32"}, {"border", "clamp"}}),
+                                generate("bumps", {{"w", "24"}, {"spacing", "8"}, {"r", "3"}}),
+                                generate("ridges", {{"w", "30"}, {"border", "clamp"}, {"angle", "30"}})};
+  for (const HeightField& f : fields) {
+    long checked = 0, positive = 0;
+    for (int y = 0; y < f.height(); ++y)
+      for (int x = 0; x < f.width(); ++x)
+        for (double phi = 0.05; phi < 2 * kPi; phi += 0.61) {
+          const double c = std::cos(phi), s = std::sin(phi);
+          const double a = horizon_tan(f, x, y, c, s, {}), b = horizon_tan_unaccelerated(f, x, y, c, s, {});
+          if (a != b) CHECK(a == b);  // only report mismatches (there are ~10^4 comparisons)
+          ++checked;
+          positive += a > 0;
+        }
+    CHECK(checked > 5000);
+    CHECK(positive > checked / 4);
+  }
+}
