@@ -44,6 +44,7 @@ const char* kUsage =
     "  --border wrap|clamp       border rule of a loaded file (default wrap)\n"
     "  --rays N                  rays per texel, rounded to k^2 with k = round(sqrt N) (default 256)\n"
     "  --horizon N               azimuths of the horizon map (default 8; 0 = none)\n"
+    "  --max-distance D          march cut-off in texels (default: the larger side)\n"
     "  --threads N               worker threads (default: all; results do not depend on it)\n"
     "  --out DIR                 output directory (default out/bumpshadow)\n"
     "  --cache DIR               cache directory (default DIR/cache)\n"
@@ -105,7 +106,7 @@ Subcommand bumpshadow_command() {
   s.run = [](const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
     std::string file, gen, dir = "out/bumpshadow", cache_dir;
     std::vector<std::string> kv;
-    double scale = 1;
+    double scale = 1, max_distance = 0;
     int rays = 256, threads = 0, horizon = 8;
     bool no_cache = false;
     bs::Border border = bs::Border::Wrap;
@@ -141,6 +142,12 @@ Subcommand bumpshadow_command() {
         if (v && *v == "wrap") border = bs::Border::Wrap;
         else if (v && *v == "clamp") border = bs::Border::Clamp;
         else return usage_error(err, "bumpshadow", "--border expects wrap or clamp");
+      } else if (a == "--max-distance") {
+        auto v = value("D");
+        char* end = nullptr;
+        if (v) max_distance = std::strtod(v->c_str(), &end);
+        if (!v || end == v->c_str() || *end != '\0' || !std::isfinite(max_distance) || max_distance <= 0)
+          return usage_error(err, "bumpshadow", "--max-distance expects a finite number > 0");
       } else if (a == "--rays") {
         auto v = value("N");
         if (!v || !parse_int(*v, rays, 4, 1 << 20)) return usage_error(err, "bumpshadow", "--rays expects 4..1048576");
@@ -185,6 +192,7 @@ Subcommand bumpshadow_command() {
       const bs::HeightField& hf = *loaded;
       bs::ShadowMapOptions o;
       o.rays = bs::rays_for_count(rays);
+      o.rays.march.max_distance = max_distance;
       o.threads = threads;
       ProgressBar bar(err, "ellipse fit");
       o.progress = [&bar](int d, int t) { bar(d, t); };

@@ -91,6 +91,12 @@ TEST_CASE("heightfield_io: the bumpshadow command writes every map, a report, an
   CHECK(text.find("cache       hit") != std::string::npos);
   REQUIRE(run({"bumpshadow", "--generate", "bumps", "w=16", "spacing=8", "r=3", "--rays", "49", "--out", o}, &text) == 0);
   CHECK(text.find("cache       computed") != std::string::npos);  // changed parameter
+  REQUIRE(run({"bumpshadow", "--generate", "bumps", "w=16", "spacing=8", "r=3", "--rays", "49", "--max-distance", "4",
+               "--out", o},
+              &text) == 0);
+  CHECK(text.find("cache       computed") != std::string::npos);  // the march cut-off is part of the key
+  CHECK(text.find("max_distance=4") != std::string::npos);
+  CHECK(run({"bumpshadow", "--generate", "bumps", "--max-distance", "-1"}) == 2);
   // a file input
   Image im = Image::make(8, 8, 1, SampleType::U8);
   im.u8[27] = 255;
