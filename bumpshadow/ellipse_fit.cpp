@@ -44,13 +44,17 @@ struct Scorer {
   double operator()(const P& p) const {
     const double c = det::cos(p[2]), s = det::sin(p[2]);
     const double irx = 1 / (p[3] * p[3]), iry = 1 / (p[4] * p[4]);
-    double lit_in = 0, sh_in = 0;
+    // Branch-free counts (the inside test is unpredictable); integer counts
+    // make the score exact.
+    int in = 0, lit_in = 0;
     for (int k = 0; k < n; ++k) {
       const double dx = px[k] - p[0], dy = py[k] - p[1];
       const double u = c * dx + s * dy, v = -s * dx + c * dy;
-      if (u * u * irx + v * v * iry <= 1) (lit[k] ? lit_in : sh_in) += 1;
+      const int inside = u * u * irx + v * v * iry <= 1;
+      in += inside;
+      lit_in += inside & static_cast<int>(lit[k] != 0);
     }
-    return lit_in - w * sh_in;
+    return lit_in - w * (in - lit_in);
   }
 };
 
