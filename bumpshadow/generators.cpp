@@ -254,7 +254,7 @@ const std::vector<Entry>& registry() {
                                {"cx", "", "centre column (default floor(w/2))"},
                                {"cy", "", "centre row (default floor(h/2))"}})},
        gen_bump},
-      {{"bumps", "a grid of hemispherical bumps (the paper's figure 6.1 texture)",
+      {{"bumps", "a regular grid of hemispherical bumps (optionally jittered)",
         plus(common("wrap"), {{"spacing", "16", "grid pitch in texels"},
                               {"r", "6", "bump radius in texels"},
                               {"jitter", "0", "random centre offset, fraction of the pitch (0..1)"}})},
