@@ -53,8 +53,10 @@ TEST_CASE("encodings: eq. 5.1 with the consistent pairing reproduces eq. 4.1, th
     flips += (eq51(t.t1n, t.t2n, t.rx2, lx, ly, L2Pairing::Printed) >= 0) != (d41 >= 0);
     ++pairs;
   }
-  // The README reports "roughly a quarter"; require a clearly visible effect.
-  CHECK(flips > pairs / 10);
+  // The README reports "roughly a quarter" (0.263 on 10^5 pairs drawn like
+  // these); with 400 pairs require the fraction to lie in [0.15, 0.40].
+  CHECK(flips >= 0.15 * pairs);
+  CHECK(flips <= 0.40 * pairs);
 }
 
 TEST_CASE("encodings: maps are biased per sections 4.1.1 and 5.1.2 with the stated alphas") {
