@@ -26,4 +26,10 @@ ShadowErrorStats compare_with_reference(const std::vector<double>& d, const std:
   return s;
 }
 
+ShadowErrorStats compare_lit_maps(const std::vector<std::uint8_t>& lit, const std::vector<std::uint8_t>& ref) {
+  std::vector<double> d(lit.size());
+  for (std::size_t t = 0; t < lit.size(); ++t) d[t] = lit[t] ? 1.0 : -1.0;
+  return compare_with_reference(d, ref);
+}
+
 }  // namespace ffsim::bumpshadow

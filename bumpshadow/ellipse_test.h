@@ -27,5 +27,7 @@ struct ShadowErrorStats {
 // Compares the hard verdicts (d >= 0) with a reference lit map of the same size
 // (reference_lit_map). Throws HeightFieldError on a size mismatch.
 ShadowErrorStats compare_with_reference(const std::vector<double>& d, const std::vector<std::uint8_t>& reference_lit);
+// The same for any binary lit map (e.g. horizon_lit_map of horizon.h).
+ShadowErrorStats compare_lit_maps(const std::vector<std::uint8_t>& lit, const std::vector<std::uint8_t>& reference_lit);
 
 }  // namespace ffsim::bumpshadow

@@ -62,4 +62,12 @@ double horizon_light(const HorizonMap& h, int x, int y, const Vec3& l, double di
   return penumbra_fraction((elev - beta) / (0.5 * diameter));
 }
 
+std::vector<std::uint8_t> horizon_lit_map(const HorizonMap& h, const Vec3& light) {
+  std::vector<std::uint8_t> out(static_cast<std::size_t>(h.width) * h.height);
+  for (int y = 0; y < h.height; ++y)
+    for (int x = 0; x < h.width; ++x)
+      out[static_cast<std::size_t>(y) * h.width + x] = horizon_light(h, x, y, light) == 1.0;
+  return out;
+}
+
 }  // namespace ffsim::bumpshadow

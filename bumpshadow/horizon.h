@@ -6,6 +6,7 @@
 // (Max section 2), then compared with the light's elevation; a disc light of
 // angular diameter delta gets the visible fraction f(alpha) of Max section 5.
 #pragma once
+#include <cstdint>
 #include <vector>
 
 #include "bumpshadow/encodings.h"
@@ -40,5 +41,8 @@ double penumbra_fraction(double alpha);
 // f(alpha), alpha = (elevation - horizon) / (diameter / 2) (Max's alpha with
 // beta - phi written in elevations). Lights with z <= 0 give 0.
 double horizon_light(const HorizonMap& h, int x, int y, const Vec3& light, double diameter = 0);
+
+// horizon_light with diameter 0 for every texel, as 0/1 (row-major).
+std::vector<std::uint8_t> horizon_lit_map(const HorizonMap& h, const Vec3& light);
 
 }  // namespace ffsim::bumpshadow

@@ -14,8 +14,10 @@
 #include <sstream>
 
 #include "bumpshadow/cache.h"
+#include "bumpshadow/ellipse_test.h"
 #include "bumpshadow/encodings.h"
 #include "bumpshadow/generators.h"
+#include "bumpshadow/reference.h"
 #include "sim/cli/cli.h"
 #include "sim/heightfield_io.h"
 
@@ -45,6 +47,10 @@ const char* kUsage =
     "  --rays N                  rays per texel, rounded to k^2 with k = round(sqrt N) (default 256)\n"
     "  --horizon N               azimuths of the horizon map (default 8; 0 = none)\n"
     "  --max-distance D          march cut-off in texels (default: the larger side)\n"
+    "  --light X,Y,Z             also evaluate a directional light (tangent frame, z up;\n"
+    "                            repeatable): writes reference-N.png (exact ray-cast\n"
+    "                            lit map) and reports the fraction of texels the float64\n"
+    "                            ellipse test and the horizon map get wrong\n"
     "  --threads N               worker threads (default: all; results do not depend on it)\n"
     "  --out DIR                 output directory (default out/bumpshadow)\n"
     "  --cache DIR               cache directory (default DIR/cache)\n"
@@ -106,6 +112,7 @@ Subcommand bumpshadow_command() {
   s.run = [](const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
     std::string file, gen, dir = "out/bumpshadow", cache_dir;
     std::vector<std::string> kv;
+    std::vector<bs::Vec3> lights;
     double scale = 1, max_distance = 0;
     int rays = 256, threads = 0, horizon = 8;
     bool no_cache = false;
@@ -148,6 +155,14 @@ Subcommand bumpshadow_command() {
         if (v) max_distance = std::strtod(v->c_str(), &end);
         if (!v || end == v->c_str() || *end != '\0' || !std::isfinite(max_distance) || max_distance <= 0)
           return usage_error(err, "bumpshadow", "--max-distance expects a finite number > 0");
+      } else if (a == "--light") {
+        auto v = value("X,Y,Z");
+        bs::Vec3 l;
+        char tail = 0;
+        if (!v || std::sscanf(v->c_str(), "%lf,%lf,%lf%c", &l.x, &l.y, &l.z, &tail) != 3 || !std::isfinite(l.x) ||
+            !std::isfinite(l.y) || !std::isfinite(l.z) || !(l.z > 0))
+          return usage_error(err, "bumpshadow", "--light expects X,Y,Z with finite numbers and Z > 0");
+        lights.push_back(l);
       } else if (a == "--rays") {
         auto v = value("N");
         if (!v || !parse_int(*v, rays, 4, 1 << 20)) return usage_error(err, "bumpshadow", "--rays expects 4..1048576");
@@ -254,6 +269,28 @@ Subcommand bumpshadow_command() {
         js << (r ? "," : "") << "\n    {\"map\": \"" << rr.map << "\", \"texels_out_of_range\": " << rr.texels_out_of_range
            << ", \"components_out_of_range\": " << rr.components_out_of_range
            << ", \"components_clamped\": " << rr.components_clamped << "}";
+      }
+      js << "\n  ],\n  \"lights\": [";
+      for (std::size_t li = 0; li < lights.size(); ++li) {
+        const bs::Vec3& L = lights[li];
+        const std::vector<std::uint8_t> ref = bs::reference_lit_map(hf, L, o.rays.march, threads);
+        Image im = Image::make(hf.width(), hf.height(), 1, SampleType::U8);
+        for (std::size_t t = 0; t < ref.size(); ++t) im.u8[t] = ref[t] ? 255 : 0;
+        write_image(dir + "/reference-" + std::to_string(li) + ".png", im);
+        const bs::ShadowErrorStats es = bs::compare_with_reference(bs::ellipse_test_map(m, L), ref);
+        txt << "light " << li << "     (" << L.x << ", " << L.y << ", " << L.z << "): ellipse test wrong on "
+            << es.error_fraction() << " of texels (" << es.false_lit << " false lit, " << es.false_shadow
+            << " false shadow)";
+        js << (li ? "," : "") << "\n    {\"light\": [" << L.x << ", " << L.y << ", " << L.z
+           << "], \"ellipse_error\": " << es.error_fraction() << ", \"ellipse_false_lit\": " << es.false_lit
+           << ", \"ellipse_false_shadow\": " << es.false_shadow;
+        if (hm) {
+          const bs::ShadowErrorStats hs = bs::compare_lit_maps(bs::horizon_lit_map(*hm, L), ref);
+          txt << ", horizon map wrong on " << hs.error_fraction();
+          js << ", \"horizon_error\": " << hs.error_fraction();
+        }
+        txt << "\n";
+        js << "}";
       }
       if (hm) txt << "horizon     " << hm->azimuths << " azimuths" << (no_cache ? "" : hhit ? " (cache hit)" : "") << "\n";
       js << "\n  ],\n  \"horizon_azimuths\": " << (hm ? hm->azimuths : 0) << ",\n  \"seconds\": " << seconds << "\n}\n";

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "bumpshadow/ellipse_test.h"
 #include "bumpshadow/generators.h"
 #include "bumpshadow/horizon.h"
 #include "bumpshadow/reference.h"
@@ -243,4 +244,22 @@ TEST_CASE("visibility: per-ray verdicts equal the exact reference along each ray
     }
   CHECK(same >= 0.999 * total);
   CHECK(shadowed > total / 50);  // real shadows were tested
+}
+
+TEST_CASE("visibility: the horizon lit map equals the reference on tabulated azimuths") {
+  // On an azimuth that the horizon map tabulates, interpolation returns the
+  // tabulated angle, which is the reference's own march: no texel may differ.
+  const HeightField f = generate("craters", {{"w", "24"}});
+  const HorizonMap hm = compute_horizon_map(f, 16, {}, 2);
+  const Vec3 L = dir(2 * kPi * 3 / 16, 0.35);
+  const std::vector<std::uint8_t> ref = reference_lit_map(f, L, {}, 2);
+  const ShadowErrorStats s = compare_lit_maps(horizon_lit_map(hm, L), ref);
+  CHECK(s.texels == 24 * 24);
+  CHECK(s.false_lit + s.false_shadow <= 2);  // atan/tan round trip of a texel exactly on its horizon
+  long shadowed = 0;
+  for (auto v : ref) shadowed += !v;
+  CHECK(shadowed > 20);
+  // Between tabulated azimuths the interpolation costs something, but stays small on craters.
+  const Vec3 M = dir(2 * kPi * 3.5 / 16, 0.35);
+  CHECK(compare_lit_maps(horizon_lit_map(hm, M), reference_lit_map(f, M, {}, 2)).error_fraction() < 0.1);
 }

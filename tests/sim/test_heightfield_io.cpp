@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 #include "sim/cli/cli.h"
@@ -97,6 +98,19 @@ TEST_CASE("heightfield_io: the bumpshadow command writes every map, a report, an
   CHECK(text.find("cache       computed") != std::string::npos);  // the march cut-off is part of the key
   CHECK(text.find("max_distance=4") != std::string::npos);
   CHECK(run({"bumpshadow", "--generate", "bumps", "--max-distance", "-1"}) == 2);
+  // lights: exact reference maps and the error fractions of the ellipse test and the horizon map
+  REQUIRE(run({"bumpshadow", "--generate", "bumps", "w=16", "spacing=8", "r=3", "--rays", "36", "--light",
+               "0.8,0,0.6", "--light", "0,-0.5,0.5", "--out", o},
+              &text) == 0);
+  CHECK(text.find("light 0") != std::string::npos);
+  CHECK(text.find("light 1") != std::string::npos);
+  CHECK(text.find("horizon map wrong on") != std::string::npos);
+  CHECK(fs::exists(d / "out" / "reference-1.png"));
+  std::ifstream js((d / "out" / "report.json").string());
+  const std::string json((std::istreambuf_iterator<char>(js)), std::istreambuf_iterator<char>());
+  CHECK(json.find("\"ellipse_error\": ") != std::string::npos);
+  CHECK(run({"bumpshadow", "--generate", "bumps", "--light", "1,0,-1"}) == 2);  // below the horizon
+  CHECK(run({"bumpshadow", "--generate", "bumps", "--light", "1,0"}) == 2);
   // a file input
   Image im = Image::make(8, 8, 1, SampleType::U8);
   im.u8[27] = 255;
