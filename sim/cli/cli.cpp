@@ -34,7 +34,7 @@ const std::vector<Subcommand>& subcommands() {
       planned("compare", "replay two traces (or one under two profiles) and diff them", "issue #6"),
       planned("info", "show a trace's parameters, resources and passes", "issue #6"),
       planned("bench", "run time against error, and per-stage throughput", "issues #9, #10"),
-      planned("bumpshadow", "precompute ellipse shadow maps and horizon maps", "issue #7"),
+      bumpshadow_command(),
       profiles_command(),
       demo_command(),
   };

@@ -32,5 +32,6 @@ bool wants_help(const std::vector<std::string>& args);
 // Subcommand implementations (one file each under sim/cli/).
 Subcommand demo_command();
 Subcommand profiles_command();
+Subcommand bumpshadow_command();
 
 }  // namespace ffsim::cli
