@@ -22,11 +22,19 @@ void Context::write_fragments(FragmentSpan& span) {
     const int x = span.x0 + i;
     if (x < r.x || x >= r.x + r.width) continue;
     const std::size_t dst = 4 * fb_.index(x, span.y);
+    const bool probed = probe_.hits(x, span.y);
+    std::string before;
+    if (probed) before = describe_color(fb_, x, span.y);
     for (int c = 0; c < 4; ++c) {
       if (!masks_.color[c]) continue;
       if (fl) fb_.values()[dst + c] = span.values[4 * i + c];
       else fb_.codes()[dst + c] = span.codes[4 * i + c];
     }
+    if (probed)
+      probe_.record("write_fragments",
+                    "fragment " + (fl ? describe_values(&span.values[4 * static_cast<std::size_t>(i)])
+                                      : describe_codes(&span.codes[4 * static_cast<std::size_t>(i)], fb_.format().color_bits)) +
+                        ", framebuffer " + before + " -> " + describe_color(fb_, x, span.y));
   }
 }
 

@@ -32,5 +32,9 @@ bool wants_help(const std::vector<std::string>& args);
 // Subcommand implementations (one file each under sim/cli/).
 Subcommand demo_command();
 Subcommand profiles_command();
+Subcommand replay_command();
+Subcommand diff_command();
+Subcommand compare_command();
+Subcommand info_command();
 
 }  // namespace ffsim::cli
