@@ -139,7 +139,7 @@ class CommandTable {
     if (args.size() != sizeof...(P))
       throw BindError(name + ": " + std::to_string(args.size()) + " argument specs for a method with " +
                       std::to_string(sizeof...(P)) + " parameters");
-    check_kinds<P...>(name, args, std::index_sequence_for<P...>{});
+    check_kinds<P...>(name, args);
     return add(std::move(name), std::move(args), [fn](Context& c, const Args& a) {
       call(c, fn, a, std::index_sequence_for<P...>{});
     });
@@ -149,12 +149,14 @@ class CommandTable {
   const std::map<std::string, CommandDef>& all() const { return defs_; }
 
  private:
-  template <class... P, std::size_t... I>
-  static void check_kinds(const std::string& name, const std::vector<ArgSpec>& args, std::index_sequence<I...>) {
-    const bool ok[] = {true, detail::accepts<P>(args[I].kind)...};
-    for (std::size_t k = 0; k < sizeof...(P); ++k)
-      if (!ok[k + 1]) throw BindError(name + ": argument " + std::to_string(k + 1) + " (" + args[k].name +
-                                      ") has a spec kind the method parameter cannot take");
+  template <class... P>
+  static void check_kinds(const std::string& name, const std::vector<ArgSpec>& args) {
+    using Accepts = bool (*)(ArgKind);
+    const Accepts accepts[] = {nullptr, &detail::accepts<P>...};
+    for (std::size_t k = 0; k < sizeof...(P) && k < args.size(); ++k)
+      if (!accepts[k + 1](args[k].kind))
+        throw BindError(name + ": argument " + std::to_string(k + 1) + " (" + args[k].name +
+                        ") has a spec kind the method parameter cannot take");
   }
   template <class R, class... P, std::size_t... I>
   static void call(Context& c, R (Context::*fn)(P...), const Args& a, std::index_sequence<I...>) {

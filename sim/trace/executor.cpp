@@ -133,7 +133,9 @@ class Runner {
         if (e == s.error) {
           pending_.clear();  // the errors were expected
         } else {
-          fail(s, "expect error " + gl::enum_name(s.error) + ": glGetError returned " + gl::enum_name(e));
+          // Error codes share values with other tokens (0 is also GL_FALSE, GL_ZERO).
+          auto name = [](GLenum v) { return v == gl::NO_ERROR ? std::string("GL_NO_ERROR") : gl::enum_name(v); };
+          fail(s, "expect error " + name(s.error) + ": glGetError returned " + name(e));
         }
         break;
       }

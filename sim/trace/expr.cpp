@@ -56,6 +56,8 @@ class ExprParser {
     while (pos_ < s_.size() && (s_[pos_] == ' ' || s_[pos_] == '\t')) ++pos_;
   }
   int add(Expression::Node n) {
+    if (e_.nodes_.size() >= static_cast<std::size_t>(kMaxExprNodes))
+      e_.fail(n.column, "expression too long (more than " + std::to_string(kMaxExprNodes) + " terms)");
     e_.nodes_.push_back(std::move(n));
     return static_cast<int>(e_.nodes_.size()) - 1;
   }
@@ -73,26 +75,26 @@ class ExprParser {
 
   int expr(int depth) {
     enter(depth);
-    int left = term(depth + 1);
+    int left = term(depth);
     for (;;) {
       skip();
       if (pos_ >= s_.size() || (s_[pos_] != '+' && s_[pos_] != '-')) return left;
       const Op op = s_[pos_] == '+' ? Op::Add : Op::Sub;
       const int c = col();
       ++pos_;
-      left = binary(op, c, left, term(depth + 1));
+      left = binary(op, c, left, term(depth));
     }
   }
   int term(int depth) {
     enter(depth);
-    int left = unary(depth + 1);
+    int left = unary(depth);
     for (;;) {
       skip();
       if (pos_ >= s_.size() || (s_[pos_] != '*' && s_[pos_] != '/')) return left;
       const Op op = s_[pos_] == '*' ? Op::Mul : Op::Div;
       const int c = col();
       ++pos_;
-      left = binary(op, c, left, unary(depth + 1));
+      left = binary(op, c, left, unary(depth));
     }
   }
   int unary(int depth) {
@@ -110,11 +112,11 @@ class ExprParser {
       n.kids = {k};
       return add(std::move(n));
     }
-    return power(depth + 1);
+    return power(depth);
   }
   int power(int depth) {
     enter(depth);
-    const int base = primary(depth + 1);
+    const int base = primary(depth);
     skip();
     if (pos_ < s_.size() && s_[pos_] == '^') {
       const int c = col();
@@ -203,8 +205,9 @@ class ExprParser {
       }
       double v = 0;
       auto r = std::from_chars(s_.data() + pos_, s_.data() + e, v);
-      if (r.ec != std::errc() || r.ptr != s_.data() + e)
-        fail_here("bad number `" + std::string(s_.substr(pos_, e - pos_)) + "`");
+      if (r.ec == std::errc::result_out_of_range && r.ptr == s_.data() + e)
+        fail_here(cat("number `", s_.substr(pos_, e - pos_), "` is out of range"));
+      if (r.ec != std::errc() || r.ptr != s_.data() + e) fail_here(cat("bad number `", s_.substr(pos_, e - pos_), "`"));
       if (!std::isfinite(v)) fail_here("number `" + std::string(s_.substr(pos_, e - pos_)) + "` is out of range");
       pos_ = e;
       n.num = v;

@@ -12,7 +12,7 @@
 // sin, cos, tan, atan2, min, max, clamp(v, lo, hi), pow, abs, floor, ceil.
 // Division by zero and any NaN or infinite intermediate result are errors naming
 // the column of the operator or function that produced them. Nesting is limited
-// to kMaxExprDepth levels.
+// to kMaxExprDepth levels and the size to kMaxExprNodes terms (evaluation recurses).
 #pragma once
 #include <functional>
 #include <optional>
@@ -24,7 +24,8 @@
 
 namespace ffsim::trace {
 
-inline constexpr int kMaxExprDepth = 64;
+inline constexpr int kMaxExprDepth = 64;     // nested parentheses, calls and signs
+inline constexpr int kMaxExprNodes = 1024;   // numbers, names and operators per expression
 
 class Expression {
  public:
