@@ -87,6 +87,7 @@ Subcommand info_command() {
         case trace::StepKind::ExpectHash:
         case trace::StepKind::ExpectPixel:
         case trace::StepKind::ExpectError:
+        case trace::StepKind::ExpectEnabled:
         {
           std::string t = st.line_text.substr(static_cast<std::size_t>(st.where.column - 1));
           t = t.substr(0, t.find('#'));

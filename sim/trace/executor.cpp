@@ -128,6 +128,12 @@ class Runner {
                       " (tol " + format_number(s.tol) + ")");
         break;
       }
+      case StepKind::ExpectEnabled: {
+        const bool on = ctx.isEnabled(s.error);  // glIsEnabled
+        if (on != s.enabled)
+          fail(s, "expect enabled " + gl::enum_name(s.error) + ": glIsEnabled returned " + (on ? "GL_TRUE" : "GL_FALSE"));
+        break;
+      }
       case StepKind::ExpectError: {
         const GLenum e = ctx.getError();
         if (e == s.error) {

@@ -487,7 +487,7 @@ class Loader {
   }
 
   void expect(const Line& l) {
-    if (l.tok.size() < 2) throw TraceError(l.end(), "`expect` needs what to check: hash, pixel or error", l.text);
+    if (l.tok.size() < 2) throw TraceError(l.end(), "`expect` needs what to check: hash, pixel, error or enabled", l.text);
     const std::string& what = l.tok[1].text;
     if (what == "hash") {
       expect_count(l, 3, 3, "expect hash color|alpha|stencil|depth HEX");
@@ -530,8 +530,14 @@ class Loader {
       Step s = step(l, StepKind::ExpectError);
       s.error = enum_token(l, 2, "error", {});
       prog_.steps.push_back(std::move(s));
+    } else if (what == "enabled") {
+      expect_count(l, 3, 3, "expect enabled CAPABILITY 0|1");
+      Step s = step(l, StepKind::ExpectEnabled);
+      s.error = enum_token(l, 2, "the capability", {});
+      s.enabled = boolean(l, 3, "the state");
+      prog_.steps.push_back(std::move(s));
     } else {
-      fail(l, 1, "expected hash, pixel or error after `expect`, got `" + what + "`");
+      fail(l, 1, "expected hash, pixel, error or enabled after `expect`, got `" + what + "`");
     }
   }
 

@@ -27,7 +27,7 @@ inline constexpr std::size_t kMaxTraceFileBytes = 4u << 20;  // per file
 inline constexpr long long kMaxTraceLines = 1000000;         // all files together, includes expanded
 inline constexpr int kMaxTableWidth = 65536;
 
-enum class StepKind { Call, Dump, Hash, ExpectHash, ExpectPixel, ExpectError };
+enum class StepKind { Call, Dump, Hash, ExpectHash, ExpectPixel, ExpectError, ExpectEnabled };
 
 struct Step {
   StepKind kind = StepKind::Call;
@@ -42,7 +42,8 @@ struct Step {
   int x = 0, y = 0;                       // ExpectPixel
   std::vector<double> values;             // ExpectPixel: 4 for color, 1 otherwise
   double tol = 0;                         // ExpectPixel
-  GLenum error = gl::NO_ERROR;            // ExpectError
+  GLenum error = gl::NO_ERROR;            // ExpectError; ExpectEnabled: the capability
+  bool enabled = false;                   // ExpectEnabled
   bool is_pass() const { return kind == StepKind::Call && def && def->is_pass; }
 };
 

@@ -45,9 +45,9 @@ TEST_CASE("cli replay: runs a trace, writes its dumps and prints hashes") {
   const Run r = run({"replay", kExamples + "masks.trace", "--out", d.string()});
   CHECK(r.code == 0);
   CHECK(r.err.empty());
-  CHECK(r.out.find(kExamples + "masks.trace: profile geforce256, 32x32, 3 passes, 21 steps, ") == 0);
+  CHECK(r.out.find(kExamples + "masks.trace: profile geforce256, 32x32, 3 passes, 22 steps, ") == 0);
   CHECK(contains(r.out, cat("\nhash alpha ")));
-  CHECK(contains(r.out, cat("  ", kExamples, "masks.trace:30:1\n")));
+  CHECK(contains(r.out, cat("  ", kExamples, "masks.trace:31:1\n")));
   CHECK(contains(r.out, cat("wrote ", (d / "masks-alpha.png").string(), "\n")));
   CHECK(fs::exists(d / "masks-alpha.png"));
   CHECK(fs::exists(d / "masks-stencil.png"));

@@ -177,6 +177,9 @@ TEST_CASE("trace run: expect failures are reported and do not stop the run") {
   CHECK(a.r.gl_errors.empty());
   REQUIRE(a.r.hashes.size() == 1);
   // The last expect error: glGetError returned GL_NO_ERROR.
+  const Ran e = run_text(V + "glEnable GL_SCISSOR_TEST\nexpect enabled GL_SCISSOR_TEST 1\nexpect enabled GL_SCISSOR_TEST 0\n");
+  REQUIRE(e.r.expect_failures.size() == 1);
+  CHECK(e.r.expect_failures[0] == "t.trace:4:1: expect enabled GL_SCISSOR_TEST: glIsEnabled returned GL_TRUE");
   const Ran b = run_text(V + "expect error GL_INVALID_ENUM\n");
   REQUIRE(b.r.expect_failures.size() == 1);
   CHECK(b.r.expect_failures[0] == "t.trace:2:1: expect error GL_INVALID_ENUM: glGetError returned GL_NO_ERROR");
