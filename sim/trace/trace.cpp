@@ -102,6 +102,9 @@ class Loader {
     const auto size = fs::file_size(path, ec);
     if (ec || size > kMaxTraceFileBytes)
       throw fail("cannot read `" + path + "`: larger than " + std::to_string(kMaxTraceFileBytes) + " bytes");
+    total_bytes_ += size;
+    if (total_bytes_ > kMaxTraceTotalBytes)
+      throw fail("the trace reads more than " + std::to_string(kMaxTraceTotalBytes) + " bytes (includes expanded)");
     std::ifstream in(path, std::ios::binary);
     std::stringstream ss;
     ss << in.rdbuf();
@@ -465,8 +468,8 @@ class Loader {
     const fs::path p(f);
     bool bad = f.empty() || p.is_absolute() || f.back() == '/';
     for (const auto& part : p)
-      if (part == ".." || part == ".") bad = true;
-    if (bad) fail(l, 2, "dump file `" + f + "` must be a relative path inside the output directory (no `..`)");
+      if (!part.empty() && part.string()[0] == '.') bad = true;  // `..`, `.`, hidden names (temporaries)
+    if (bad) fail(l, 2, "dump file `" + f + "` must be a relative path inside the output directory (no `..`, no names starting with `.`)");
     std::string ext = p.extension().string();
     for (auto& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
     if (ext != ".png" && ext != ".exr" && ext != ".tif" && ext != ".tiff")
@@ -668,6 +671,7 @@ class Loader {
   std::vector<std::string> stack_, stack_names_;
   std::string dir_;
   long long total_lines_ = 0;
+  std::uintmax_t total_bytes_ = 0;
   bool frozen_ = false, profile_set_ = false;
   SourceLoc size_at_, profile_at_;
   std::string size_line_;

@@ -25,6 +25,7 @@ inline constexpr int kTraceVersion = 1;
 inline constexpr int kMaxIncludeDepth = 16;
 inline constexpr std::size_t kMaxTraceFileBytes = 4u << 20;  // per file
 inline constexpr long long kMaxTraceLines = 1000000;         // all files together, includes expanded
+inline constexpr std::uintmax_t kMaxTraceTotalBytes = 64u << 20;  // all files together, includes expanded
 inline constexpr int kMaxTableWidth = 65536;
 
 enum class StepKind { Call, Dump, Hash, ExpectHash, ExpectPixel, ExpectError, ExpectEnabled };

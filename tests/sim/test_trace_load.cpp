@@ -192,8 +192,9 @@ TEST_CASE("trace load: client images, generators and tables") {
 
 TEST_CASE("trace load: outputs") {
   CHECK(load_error(V + "dump colour a.png\n") == "t.trace:2:6: expected a buffer: color, alpha, stencil or depth; got `colour`");
-  CHECK(load_error(V + "dump color ../a.png\n") == "t.trace:2:12: dump file `../a.png` must be a relative path inside the output directory (no `..`)");
-  CHECK(load_error(V + "dump color /tmp/a.png\n") == "t.trace:2:12: dump file `/tmp/a.png` must be a relative path inside the output directory (no `..`)");
+  CHECK(load_error(V + "dump color ../a.png\n") == "t.trace:2:12: dump file `../a.png` must be a relative path inside the output directory (no `..`, no names starting with `.`)");
+  CHECK(load_error(V + "dump color /tmp/a.png\n") == "t.trace:2:12: dump file `/tmp/a.png` must be a relative path inside the output directory (no `..`, no names starting with `.`)");
+  CHECK(load_error(V + "dump color sub/.a.png\n") == "t.trace:2:12: dump file `sub/.a.png` must be a relative path inside the output directory (no `..`, no names starting with `.`)");
   CHECK(load_error(V + "dump color a.jpg\n") == "t.trace:2:12: dump file `a.jpg` needs the extension .png, .exr, .tif or .tiff");
   CHECK(load_error(V + "dump color a.png\ndump alpha a.png\n") == "t.trace:3:12: `a.png` is already written by the dump at t.trace:2:1");
   CHECK(load_error(V + "dump color passes/a.png\n") == "t.trace:2:12: the directory passes/ is reserved for --dump-each-pass");
@@ -307,4 +308,21 @@ TEST_CASE("trace load: image reads a file relative to the trace") {
   CHECK(q.u8[q.index(3, 3, 0)] == 0);
   CHECK(q.u8[q.index(0, 3, 0)] == 255);
   CHECK(q.u8[q.index(0, 3, 3)] == 255);
+}
+
+TEST_CASE("trace load: the bytes read in all, includes expanded, are capped") {
+  // A 3 MiB file (one comment line) included 22 times: 21 x 3 MiB = 63 MiB plus
+  // the main file stay under 64 MiB, the 22nd include (line 23) goes over.
+  const fs::path d = temp_dir("bytes");
+  write_file(d / "big.trace", cat(V, "#", std::string(3u << 20, 'x'), "\n"));
+  std::string main = V;
+  for (int k = 0; k < 22; ++k) main += "include big.trace\n";
+  write_file(d / "main.trace", main);
+  try {
+    load_trace_file((d / "main.trace").string(), {});
+    FAIL("expected the size limit");
+  } catch (const TraceError& e) {
+    CHECK(std::string(e.what()) == cat((d / "main.trace").string(), ":23:9: the trace reads more than 67108864 bytes (includes expanded)"));
+  }
+  fs::remove_all(d);
 }
