@@ -1,6 +1,8 @@
 #include "sim/trace/generators.h"
 
 #include <cmath>
+#include <limits>
+#include <stdexcept>
 
 #include "bumpshadow/heightfield.h"
 
@@ -62,7 +64,13 @@ namespace {
 Image heightfield_image(const bumpshadow::HeightField& h) {
   Image im = Image::make(h.width(), h.height(), 1, SampleType::F32);
   for (int y = 0; y < h.height(); ++y)
-    for (int x = 0; x < h.width(); ++x) im.f32[im.index(x, y, 0)] = static_cast<float>(h.at(x, y));
+    for (int x = 0; x < h.width(); ++x) {
+      const double v = h.at(x, y);
+      if (!(std::fabs(v) <= static_cast<double>(std::numeric_limits<float>::max())))
+        throw std::runtime_error("height " + format_number(v) + " at (" + std::to_string(x) + ", " + std::to_string(y) +
+                                 ") is outside the binary32 range");
+      im.f32[im.index(x, y, 0)] = static_cast<float>(v);
+    }
   return im;
 }
 

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -451,10 +452,10 @@ class Loader {
         } catch (const TraceError& e) {
           throw TraceError(e.where(), e.message() + " (at i = " + std::to_string(k) + ")", e.line_text());
         }
-        const float f = static_cast<float>(v);
-        if (!std::isfinite(f))
+        // Converting a double beyond the binary32 range to float is undefined: check first.
+        if (!(std::fabs(v) <= static_cast<double>(std::numeric_limits<float>::max())))
           fail(l, 3 + static_cast<std::size_t>(c), "value " + format_number(v) + " at i = " + std::to_string(k) + " is outside the binary32 range");
-        im.f32[im.index(k, 0, c)] = f;
+        im.f32[im.index(k, 0, c)] = static_cast<float>(v);
       }
     }
     add_resource(l, name, "table", source, std::move(im));
@@ -618,9 +619,10 @@ class Loader {
   }
 
   double to_float32(const Line& l, std::size_t k, const std::string& what, double v) const {
-    const float f = static_cast<float>(v);
-    if (!std::isfinite(f)) fail(l, k, what + " is outside the binary32 range (" + format_number(v) + ")");
-    return f;
+    // Converting a double beyond the binary32 range to float is undefined: check first.
+    if (!(std::fabs(v) <= static_cast<double>(std::numeric_limits<float>::max())))
+      fail(l, k, what + " is outside the binary32 range (" + format_number(v) + ")");
+    return static_cast<float>(v);
   }
 
   bool boolean(const Line& l, std::size_t k, const std::string& what) const {

@@ -187,6 +187,10 @@ TEST_CASE("trace load: client images, generators and tables") {
   CHECK(load_error(V + "generate h hemisphere_bump colour=3\n") == "t.trace:2:28: unknown key `colour`");
   CHECK(load_error(V + "generate h hemisphere_bump border=mirror\n") == "t.trace:2:35: `border` must be clamp or wrap, got `mirror`");
   CHECK(load_error(V + "generate h hemisphere_bump width=2.5\n") == "t.trace:2:34: `width` must be an integer, got 2.5");
+  CHECK(load_error(V + "generate h hemisphere_bump width=2 height=2 radius=1e100\n") ==
+        "t.trace:2:12: hemisphere_bump: height 1e+100 at (0, 0) is outside the binary32 range");
+  CHECK(load_error(V + "generate h hemisphere_bump width=2 height=2 radius=1e200\n") ==
+        "t.trace:2:12: hemisphere_bump: non-finite height at x=0 y=0");
   CHECK(load_error(V + "generate h hemisphere_bump radius=1 radius=2\n") == "t.trace:2:37: key `radius` is given twice");
 }
 
