@@ -4,6 +4,7 @@
 #include "sim/cli/cli.h"
 #include "sim/cli/trace_cli.h"
 #include "sim/trace/expr.h"
+#include "sim/trace/generators.h"
 #include "sim/trace/trace.h"
 
 namespace ffsim::cli {
@@ -24,12 +25,22 @@ Subcommand info_command() {
   s.name = "info";
   s.summary = "show a trace's parameters, resources and passes";
   s.usage =
-      "usage: ffsim info TRACE [--set NAME=VALUE ...] [--profile NAME|FILE] [--size WxH]\n\n"
+      "usage: ffsim info TRACE [--set NAME=VALUE ...] [--profile NAME|FILE] [--size WxH]\n"
+      "       ffsim info --commands\n\n"
       "Loads a trace without running it and prints its set-up (framebuffer, profile),\n"
       "parameters with defaults, values and descriptions, client images (files,\n"
       "generators, tables), passes (the commands that write the framebuffer) and\n"
-      "outputs. Trace errors are reported like `ffsim replay` does; exit code 1.\n";
+      "outputs. Trace errors are reported like `ffsim replay` does; exit code 1.\n"
+      "--commands lists the GL commands this build binds, with their arguments (passes\n"
+      "marked), and the image generators with their keys.\n";
   s.run = [](const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+    if (args.size() == 1 && args[0] == "--commands") {
+      for (const auto& [name, def] : trace::gl_commands().all())
+        out << def.signature() << (def.is_pass ? "    (pass)" : "") << "\n";
+      for (const auto& [name, g] : trace::generators().all())
+        out << "generate NAME " << name << " " << g.keys << "    " << g.description << "\n";
+      return 0;
+    }
     trace::LoadOptions lo;
     std::string path, error;
     for (std::size_t i = 0; i < args.size(); ++i) {

@@ -211,6 +211,11 @@ TEST_CASE("cli info: parameters, resources, passes, outputs") {
   const Run t = run({"info", kExamples + "table.trace"});
   CHECK(contains(t.out, "  lookup: table 0.5*(4*x-1)^2, 256x1, 1 channel, float  "));
   CHECK(contains(t.out, "  bump: generate hemisphere_bump, 32x32, 1 channel, float  "));
+  const Run c = run({"info", "--commands"});
+  CHECK(c.code == 0);
+  CHECK(contains(c.out, "glClear mask    (pass)\n"));
+  CHECK(contains(c.out, "glClearColor red green blue alpha\n"));
+  CHECK(contains(c.out, "generate NAME hemisphere_bump width=64 height=64 radius=16 border=clamp|wrap    "));
   CHECK(run({"info"}).code == 2);
   CHECK(run({"info", "--help"}).code == 0);
 }
