@@ -11,9 +11,9 @@ double clamp01(double v) { return std::clamp(v, 0.0, 1.0); }
 }  // namespace
 
 std::string Context::probe_describe_buffers(int x, int y) const {
-  std::string s = "color " + describe_color(fb_, x, y);
-  if (fb_.has_stencil()) s += ", stencil " + std::to_string(fb_.stencil()[fb_.index(x, y)]);
-  if (fb_.has_depth()) s += ", depth " + std::to_string(fb_.depth()[fb_.index(x, y)]);
+  std::string s = std::string("color ") + describe_color(fb_, x, y);
+  if (fb_.has_stencil()) s += std::string(", stencil ") + std::to_string(fb_.stencil()[fb_.index(x, y)]);
+  if (fb_.has_depth()) s += std::string(", depth ") + std::to_string(fb_.depth()[fb_.index(x, y)]);
   return s;
 }
 

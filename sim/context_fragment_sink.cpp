@@ -32,9 +32,9 @@ void Context::write_fragments(FragmentSpan& span) {
     }
     if (probed)
       probe_.record("write_fragments",
-                    "fragment " + (fl ? describe_values(&span.values[4 * static_cast<std::size_t>(i)])
+                    std::string("fragment ") + (fl ? describe_values(&span.values[4 * static_cast<std::size_t>(i)])
                                       : describe_codes(&span.codes[4 * static_cast<std::size_t>(i)], fb_.format().color_bits)) +
-                        ", framebuffer " + before + " -> " + describe_color(fb_, x, span.y));
+                        std::string(", framebuffer ") + before + " -> " + describe_color(fb_, x, span.y));
   }
 }
 

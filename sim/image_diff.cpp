@@ -10,9 +10,9 @@ ImageDiff diff_images(const Image& a, const Image& b) {
   ImageDiff d;
   if (a.width != b.width || a.height != b.height || a.channels != b.channels) {
     d.same_shape = false;
-    d.shape_note = "shapes differ: " + std::to_string(a.width) + "x" + std::to_string(a.height) + "x" +
+    d.shape_note = std::string("shapes differ: ") + std::to_string(a.width) + "x" + std::to_string(a.height) + "x" +
                    std::to_string(a.channels) + " vs " + std::to_string(b.width) + "x" + std::to_string(b.height) +
-                   "x" + std::to_string(b.channels);
+                   std::string("x") + std::to_string(b.channels);
     return d;
   }
   d.width = a.width;

@@ -47,7 +47,7 @@ Subcommand compare_command() {
       else if (a == "--profile-b") { if (!value(profile_b, "a profile")) return usage_error(err, "compare", error); }
       else if (a == "--out") { if (!value(out_dir, "a directory")) return usage_error(err, "compare", error); }
       else if (a == "--json") json = true;
-      else if (!a.empty() && a[0] == '-') return usage_error(err, "compare", "unknown argument `" + a + "`");
+      else if (!a.empty() && a[0] == '-') return usage_error(err, "compare", std::string("unknown argument `") + a + "`");
       else paths.push_back(a);
     }
     if (paths.empty() || paths.size() > 2) return usage_error(err, "compare", "expected one or two traces");
@@ -89,8 +89,8 @@ Subcommand compare_command() {
     if (!json) {
       out << "A: " << paths[0] << " (profile " << profiles[0] << ")\nB: " << paths[1] << " (profile " << profiles[1] << ")\n";
     }
-    const std::string header = "\"a\": {\"trace\": " + json_string(paths[0]) + ", \"profile\": " + json_string(profiles[0]) +
-                               "}, \"b\": {\"trace\": " + json_string(paths[1]) + ", \"profile\": " + json_string(profiles[1]) + "}, ";
+    const std::string header = std::string("\"a\": {\"trace\": ") + json_string(paths[0]) + ", \"profile\": " + json_string(profiles[0]) +
+                               std::string("}, \"b\": {\"trace\": ") + json_string(paths[1]) + ", \"profile\": " + json_string(profiles[1]) + "}, ";
     return run_diff(pairs, only_a, only_b, out_dir, json, out, err, header);
   };
   return s;

@@ -102,7 +102,7 @@ Subcommand diff_command() {
         if (i + 1 >= args.size() || args[i + 1].empty()) return usage_error(err, "diff", "--out needs a directory");
         out_dir = args[++i];
       } else if (a == "--json") json = true;
-      else if (!a.empty() && a[0] == '-') return usage_error(err, "diff", "unknown argument `" + a + "`");
+      else if (!a.empty() && a[0] == '-') return usage_error(err, "diff", std::string("unknown argument `") + a + "`");
       else paths.push_back(a);
     }
     if (paths.size() != 2) return usage_error(err, "diff", "expected two images or two directories");
@@ -128,7 +128,7 @@ Subcommand diff_command() {
       }
       std::vector<std::pair<std::string, std::pair<const Image*, const Image*>>> pairs;
       for (const auto& [n, ab] : images) pairs.push_back({n, {&ab.first, &ab.second}});
-      const std::string header = "\"a\": " + json_string(paths[0]) + ", \"b\": " + json_string(paths[1]) + ", ";
+      const std::string header = std::string("\"a\": ") + json_string(paths[0]) + ", \"b\": " + json_string(paths[1]) + ", ";
       return run_diff(pairs, only_a, only_b, out_dir, json, out, err, header);
     } catch (const std::exception& e) {
       err << "ffsim diff: " << e.what() << "\n";

@@ -48,8 +48,8 @@ Subcommand info_command() {
         if (!error.empty()) return usage_error(err, "info", error);
         continue;
       }
-      if (!args[i].empty() && args[i][0] == '-') return usage_error(err, "info", "unknown argument `" + args[i] + "`");
-      if (!path.empty()) return usage_error(err, "info", "expected one trace, got a second one `" + args[i] + "`");
+      if (!args[i].empty() && args[i][0] == '-') return usage_error(err, "info", std::string("unknown argument `") + args[i] + "`");
+      if (!path.empty()) return usage_error(err, "info", std::string("expected one trace, got a second one `") + args[i] + "`");
       path = args[i];
     }
     if (path.empty()) return usage_error(err, "info", "expected a trace file");

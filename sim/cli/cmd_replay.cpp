@@ -75,15 +75,15 @@ Subcommand replay_command() {
         if (!value(v) || !parse_int_pair(v, ',', x, y)) return usage_error(err, "replay", "--probe expects X,Y");
         ro.probe = std::make_pair(x, y);
       } else if (!a.empty() && a[0] == '-') {
-        return usage_error(err, "replay", "unknown argument `" + a + "`");
+        return usage_error(err, "replay", std::string("unknown argument `") + a + "`");
       } else if (path.empty()) {
         path = a;
       } else {
-        return usage_error(err, "replay", "expected one trace, got a second one `" + a + "`");
+        return usage_error(err, "replay", std::string("expected one trace, got a second one `") + a + "`");
       }
     }
     if (path.empty()) return usage_error(err, "replay", "expected a trace file");
-    if (!out_given) ro.out_dir = "out/" + std::filesystem::path(path).stem().string();
+    if (!out_given) ro.out_dir = std::string("out/") + std::filesystem::path(path).stem().string();
 
     trace::Program prog;
     try {
@@ -95,7 +95,7 @@ Subcommand replay_command() {
     }
     if (ro.probe && (ro.probe->first < 0 || ro.probe->second < 0 || ro.probe->first >= prog.width ||
                      ro.probe->second >= prog.height))
-      return usage_error(err, "replay", "--probe " + std::to_string(ro.probe->first) + "," +
+      return usage_error(err, "replay", std::string("--probe ") + std::to_string(ro.probe->first) + "," +
                                             std::to_string(ro.probe->second) + " is outside the " +
                                             std::to_string(prog.width) + "x" + std::to_string(prog.height) + " framebuffer");
 

@@ -76,7 +76,7 @@ bool parse_load_flag(const std::vector<std::string>& args, std::size_t& i, trace
     if (!v) return true;
     const auto eq = v->find('=');
     if (eq == std::string::npos || eq == 0) {
-      error = "--set expects NAME=VALUE, got `" + *v + "`";
+      error = std::string("--set expects NAME=VALUE, got `") + *v + "`";
       return true;
     }
     opt.sets.emplace_back(v->substr(0, eq), v->substr(eq + 1));
@@ -90,7 +90,7 @@ bool parse_load_flag(const std::vector<std::string>& args, std::size_t& i, trace
     const std::string* v = value("WxH");
     if (!v) return true;
     int w = 0, h = 0;
-    if (!parse_int_pair(*v, 'x', w, h)) error = "--size expects WxH, e.g. 256x256, got `" + *v + "`";
+    if (!parse_int_pair(*v, 'x', w, h)) error = std::string("--size expects WxH, e.g. 256x256, got `") + *v + "`";
     else opt.size = std::make_pair(w, h);
     return true;
   }
@@ -153,7 +153,7 @@ std::string heatmap_name(const std::string& name) {
     if (c == '/' || c == '\\') c = '_';
   const auto dot = n.rfind('.');
   if (dot != std::string::npos && dot > 0) n = n.substr(0, dot);
-  return "diff-" + n + ".png";
+  return std::string("diff-") + n + ".png";
 }
 
 }  // namespace ffsim::cli

@@ -14,7 +14,7 @@ TraceError::TraceError(SourceLoc where, std::string message, std::string line_te
 
 std::string TraceError::excerpt() const {
   if (line_text_.empty()) return {};
-  std::string s = "  " + line_text_ + "\n  ";
+  std::string s = std::string("  ") + line_text_ + "\n  ";
   for (int i = 1; i < where_.column && i <= static_cast<int>(line_text_.size()); ++i)
     s += line_text_[static_cast<std::size_t>(i - 1)] == '\t' ? '\t' : ' ';
   s += "^\n";

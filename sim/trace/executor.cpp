@@ -30,7 +30,7 @@ Image buffer_image(const Framebuffer& fb, BufferKind k) {
 
 std::string list(const std::vector<double>& v) {
   std::string s = v.size() > 1 ? "(" : "";
-  for (std::size_t k = 0; k < v.size(); ++k) s += (k ? ", " : "") + format_number(v[k]);
+  for (std::size_t k = 0; k < v.size(); ++k) s += std::string(k ? ", " : "") + format_number(v[k]);
   return s + (v.size() > 1 ? ")" : "");
 }
 
@@ -105,7 +105,7 @@ class Runner {
       case StepKind::ExpectHash: {
         const std::uint64_t h = buffer_hash(fb, s.buffer);
         if (h != s.hash)
-          fail(s, "expect hash " + buffer_kind_name(s.buffer) + ": got " + hash_hex(h) + ", expected " + hash_hex(s.hash));
+          fail(s, std::string("expect hash ") + buffer_kind_name(s.buffer) + ": got " + hash_hex(h) + ", expected " + hash_hex(s.hash));
         break;
       }
       case StepKind::ExpectPixel: {
@@ -123,15 +123,15 @@ class Runner {
         bool ok = true;
         for (std::size_t c = 0; c < got.size(); ++c) ok = ok && std::fabs(got[c] - s.values[c]) <= s.tol;
         if (!ok)
-          fail(s, "expect pixel " + std::to_string(s.x) + " " + std::to_string(s.y) + " " +
+          fail(s, std::string("expect pixel ") + std::to_string(s.x) + " " + std::to_string(s.y) + " " +
                       buffer_kind_name(s.buffer) + ": got " + list(got) + ", expected " + list(s.values) +
-                      " (tol " + format_number(s.tol) + ")");
+                      std::string(" (tol ") + format_number(s.tol) + ")");
         break;
       }
       case StepKind::ExpectEnabled: {
         const bool on = ctx.isEnabled(s.error);  // glIsEnabled
         if (on != s.enabled)
-          fail(s, "expect enabled " + gl::enum_name(s.error) + ": glIsEnabled returned " + (on ? "GL_TRUE" : "GL_FALSE"));
+          fail(s, std::string("expect enabled ") + gl::enum_name(s.error) + ": glIsEnabled returned " + (on ? "GL_TRUE" : "GL_FALSE"));
         break;
       }
       case StepKind::ExpectError: {
@@ -141,7 +141,7 @@ class Runner {
         } else {
           // Error codes share values with other tokens (0 is also GL_FALSE, GL_ZERO).
           auto name = [](GLenum v) { return v == gl::NO_ERROR ? std::string("GL_NO_ERROR") : gl::enum_name(v); };
-          fail(s, "expect error " + name(s.error) + ": glGetError returned " + name(e));
+          fail(s, std::string("expect error ") + name(s.error) + ": glGetError returned " + name(e));
         }
         break;
       }
@@ -204,7 +204,7 @@ class Runner {
     const fs::path final_path = fs::path(o_.out_dir) / rel;
     fs::create_directories(final_path.parent_path());
     // The temporary keeps the extension so write_image picks the same format.
-    const fs::path tmp = final_path.parent_path() / (".ffsim-tmp-" + final_path.filename().string());
+    const fs::path tmp = final_path.parent_path() / (std::string(".ffsim-tmp-") + final_path.filename().string());
     temps_.push_back({tmp, final_path});
     write_image(tmp.string(), im);
     r_.written.push_back(rel);
@@ -221,7 +221,7 @@ class Runner {
       fs::rename(t.first, t.second, ec);
       if (ec && r_.ok) {
         r_.ok = false;
-        r_.fatal = "cannot write " + t.second.string() + ": " + ec.message();
+        r_.fatal = std::string("cannot write ") + t.second.string() + ": " + ec.message();
       }
     }
     if (!r_.ok) {

@@ -57,7 +57,7 @@ class ExprParser {
   }
   int add(Expression::Node n) {
     if (e_.nodes_.size() >= static_cast<std::size_t>(kMaxExprNodes))
-      e_.fail(n.column, "expression too long (more than " + std::to_string(kMaxExprNodes) + " terms)");
+      e_.fail(n.column, std::string("expression too long (more than ") + std::to_string(kMaxExprNodes) + " terms)");
     e_.nodes_.push_back(std::move(n));
     return static_cast<int>(e_.nodes_.size()) - 1;
   }
@@ -70,7 +70,7 @@ class ExprParser {
   }
   void enter(int depth) const {
     if (depth > kMaxExprDepth)
-      e_.fail(col(), "expression nested too deeply (more than " + std::to_string(kMaxExprDepth) + " levels)");
+      e_.fail(col(), std::string("expression nested too deeply (more than ") + std::to_string(kMaxExprDepth) + " levels)");
   }
 
   int expr(int depth) {
@@ -148,7 +148,7 @@ class ExprParser {
       skip();
       if (pos_ < s_.size() && s_[pos_] == '(') {
         const FunctionInfo* f = find_function(name);
-        if (!f) e_.fail(start_col, "unknown function `" + name + "`");
+        if (!f) e_.fail(start_col, std::string("unknown function `") + name + "`");
         ++pos_;
         Expression::Node n;
         n.op = Op::Call;
@@ -159,11 +159,11 @@ class ExprParser {
           skip();
           if (pos_ < s_.size() && s_[pos_] == ',') { ++pos_; continue; }
           if (pos_ < s_.size() && s_[pos_] == ')') { ++pos_; break; }
-          fail_here("expected `,` or `)` in the arguments of `" + name + "`");
+          fail_here(std::string("expected `,` or `)` in the arguments of `") + name + "`");
         }
         if (static_cast<int>(n.kids.size()) != f->arity)
-          e_.fail(start_col, "`" + name + "` takes " + std::to_string(f->arity) + " argument" +
-                                 (f->arity == 1 ? "" : "s") + ", got " + std::to_string(n.kids.size()));
+          e_.fail(start_col, std::string("`") + name + "` takes " + std::to_string(f->arity) + " argument" +
+                                 std::string(f->arity == 1 ? "" : "s") + ", got " + std::to_string(n.kids.size()));
         return add(std::move(n));
       }
       Expression::Node n;
@@ -208,7 +208,7 @@ class ExprParser {
       if (r.ec == std::errc::result_out_of_range && r.ptr == s_.data() + e)
         fail_here(cat("number `", s_.substr(pos_, e - pos_), "` is out of range"));
       if (r.ec != std::errc() || r.ptr != s_.data() + e) fail_here(cat("bad number `", s_.substr(pos_, e - pos_), "`"));
-      if (!std::isfinite(v)) fail_here("number `" + std::string(s_.substr(pos_, e - pos_)) + "` is out of range");
+      if (!std::isfinite(v)) fail_here(std::string("number `") + std::string(s_.substr(pos_, e - pos_)) + "` is out of range");
       pos_ = e;
       n.num = v;
     }
@@ -245,7 +245,7 @@ double Expression::eval_node(int i, const Lookup& lookup) const {
     case Op::Var: {
       if (auto v = lookup(n.name)) return *v;
       if (n.name == "pi") return 3.14159265358979323846;
-      fail(n.column, "unknown parameter `" + n.name + "`");
+      fail(n.column, std::string("unknown parameter `") + n.name + "`");
     }
     case Op::Neg: return -arg(0);
     case Op::Add: r = arg(0) + arg(1); what = "`+`"; break;
@@ -264,7 +264,7 @@ double Expression::eval_node(int i, const Lookup& lookup) const {
       what = f.c_str();
       if (f == "sqrt") {
         const double a = arg(0);
-        if (a < 0) fail(n.column, "sqrt of a negative number (" + format_number(a) + ")");
+        if (a < 0) fail(n.column, std::string("sqrt of a negative number (") + format_number(a) + ")");
         r = std::sqrt(a);
       } else if (f == "sin") r = std::sin(arg(0));
       else if (f == "cos") r = std::cos(arg(0));
@@ -274,7 +274,7 @@ double Expression::eval_node(int i, const Lookup& lookup) const {
       else if (f == "max") { const double a = arg(0); r = std::max(a, arg(1)); }
       else if (f == "clamp") {
         const double v = arg(0), lo = arg(1), hi = arg(2);
-        if (lo > hi) fail(n.column, "clamp: low bound " + format_number(lo) + " is above high bound " + format_number(hi));
+        if (lo > hi) fail(n.column, std::string("clamp: low bound ") + format_number(lo) + " is above high bound " + format_number(hi));
         r = std::min(std::max(v, lo), hi);
       } else if (f == "pow") { const double a = arg(0); r = std::pow(a, arg(1)); }
       else if (f == "abs") r = std::fabs(arg(0));

@@ -20,9 +20,9 @@ long long GeneratorArgs::integer(const std::string& key, long long fallback, lon
   if (it == values_.end()) return fallback;
   const double v = number(key, 0);
   if (v != std::floor(v))
-    throw TraceError(it->second.where, "`" + key + "` must be an integer, got " + format_number(v), line_);
+    throw TraceError(it->second.where, std::string("`") + key + "` must be an integer, got " + format_number(v), line_);
   if (v < static_cast<double>(min) || v > static_cast<double>(max))
-    throw TraceError(it->second.where, "`" + key + "` must be in [" + std::to_string(min) + ", " +
+    throw TraceError(it->second.where, std::string("`") + key + "` must be in [" + std::to_string(min) + ", " +
                                            std::to_string(max) + "], got " + format_number(v), line_);
   return static_cast<long long>(v);
 }
@@ -36,7 +36,7 @@ std::string GeneratorArgs::word(const std::string& key, const std::vector<std::s
   std::string list;
   for (std::size_t k = 0; k < allowed.size(); ++k)
     list += (k ? (k + 1 == allowed.size() ? " or " : ", ") : "") + allowed[k];
-  throw TraceError(it->second.where, "`" + key + "` must be " + list + ", got `" + it->second.text + "`", line_);
+  throw TraceError(it->second.where, std::string("`") + key + "` must be " + list + ", got `" + it->second.text + "`", line_);
 }
 
 std::pair<int, int> GeneratorArgs::size(const std::string& wkey, const std::string& hkey, int fallback) {
@@ -44,7 +44,7 @@ std::pair<int, int> GeneratorArgs::size(const std::string& wkey, const std::stri
   if (w * h > max_pixels_) {
     auto it = values_.find(wkey);
     const SourceLoc where = it != values_.end() ? it->second.where : SourceLoc{};
-    throw TraceError(where, "image size " + std::to_string(w) + "x" + std::to_string(h) + " exceeds the limit of " +
+    throw TraceError(where, std::string("image size ") + std::to_string(w) + "x" + std::to_string(h) + " exceeds the limit of " +
                                 std::to_string(max_pixels_) + " pixels", line_);
   }
   return {static_cast<int>(w), static_cast<int>(h)};
@@ -55,7 +55,7 @@ void GeneratorArgs::finish() const {
     if (!v.used) {
       SourceLoc at = v.where;
       at.column -= static_cast<int>(k.size()) + 1;  // point at the key
-      throw TraceError(at, "unknown key `" + k + "`", line_);
+      throw TraceError(at, std::string("unknown key `") + k + "`", line_);
     }
 }
 
@@ -67,7 +67,7 @@ Image heightfield_image(const bumpshadow::HeightField& h) {
     for (int x = 0; x < h.width(); ++x) {
       const double v = h.at(x, y);
       if (!(std::fabs(v) <= static_cast<double>(std::numeric_limits<float>::max())))
-        throw std::runtime_error("height " + format_number(v) + " at (" + std::to_string(x) + ", " + std::to_string(y) +
+        throw std::runtime_error(std::string("height ") + format_number(v) + " at (" + std::to_string(x) + ", " + std::to_string(y) +
                                  ") is outside the binary32 range");
       im.f32[im.index(x, y, 0)] = static_cast<float>(v);
     }

@@ -36,7 +36,7 @@ int Program::pass_count() const {
 std::pair<std::string, std::string> parse_set_argument(const std::string& arg) {
   const auto eq = arg.find('=');
   if (eq == std::string::npos || eq == 0)
-    throw TraceError({"--set", 1, 1}, "expected NAME=VALUE, got `" + arg + "`", arg);
+    throw TraceError({"--set", 1, 1}, std::string("expected NAME=VALUE, got `") + arg + "`", arg);
   return {arg.substr(0, eq), arg.substr(eq + 1)};
 }
 
@@ -78,7 +78,7 @@ class Loader {
  public:
   Loader(const LoadOptions& opt) : opt_(opt), cmds_(opt.commands ? *opt.commands : gl_commands()) {
     for (const auto& s : opt.sets) {
-      if (!is_identifier(s.first)) throw TraceError({"--set", 1, 1}, "bad parameter name `" + s.first + "`", s.first + "=" + s.second);
+      if (!is_identifier(s.first)) throw TraceError({"--set", 1, 1}, std::string("bad parameter name `") + s.first + "`", s.first + "=" + s.second);
       sets_[s.first] = s.second;
     }
   }
@@ -86,7 +86,7 @@ class Loader {
   Program finish() {
     for (const auto& [name, value] : sets_)
       if (!used_sets_.count(name))
-        throw TraceError({"--set", 1, 1}, "the trace has no parameter `" + name + "`", name + "=" + value);
+        throw TraceError({"--set", 1, 1}, std::string("the trace has no parameter `") + name + "`", name + "=" + value);
     freeze();
     return std::move(prog_);
   }
@@ -97,25 +97,25 @@ class Loader {
       return TraceError({}, m);
     };
     std::error_code ec;
-    if (!fs::exists(path, ec)) throw fail("cannot read `" + path + "`: no such file");
-    if (!fs::is_regular_file(path, ec)) throw fail("cannot read `" + path + "`: not a regular file");
+    if (!fs::exists(path, ec)) throw fail(std::string("cannot read `") + path + "`: no such file");
+    if (!fs::is_regular_file(path, ec)) throw fail(std::string("cannot read `") + path + "`: not a regular file");
     check_root(path, fail);
     const auto size = fs::file_size(path, ec);
     if (ec || size > kMaxTraceFileBytes)
-      throw fail("cannot read `" + path + "`: larger than " + std::to_string(kMaxTraceFileBytes) + " bytes");
+      throw fail(std::string("cannot read `") + path + "`: larger than " + std::to_string(kMaxTraceFileBytes) + " bytes");
     total_bytes_ += size;
     if (total_bytes_ > kMaxTraceTotalBytes)
-      throw fail("the trace reads more than " + std::to_string(kMaxTraceTotalBytes) + " bytes (includes expanded)");
+      throw fail(std::string("the trace reads more than ") + std::to_string(kMaxTraceTotalBytes) + " bytes (includes expanded)");
     std::ifstream in(path, std::ios::binary);
     std::stringstream ss;
     ss << in.rdbuf();
-    if (!in && !in.eof()) throw fail("cannot read `" + path + "`");
+    if (!in && !in.eof()) throw fail(std::string("cannot read `") + path + "`");
     const std::string canon = fs::weakly_canonical(path, ec).string();
     for (std::size_t k = 0; k < stack_.size(); ++k)
       if (stack_[k] == canon) {
         std::string chain;
         for (std::size_t j = k; j < stack_.size(); ++j) chain += stack_names_[j] + " -> ";
-        throw fail("include cycle: " + chain + path);
+        throw fail(std::string("include cycle: ") + chain + path);
       }
     load_text(ss.str(), path, canon, depth);
   }
@@ -137,7 +137,7 @@ class Loader {
       pos = nl + 1;
       ++lineno;
       if (++total_lines_ > kMaxTraceLines)
-        throw TraceError({name, lineno, 1}, "trace is longer than " + std::to_string(kMaxTraceLines) + " lines (includes expanded)", raw);
+        throw TraceError({name, lineno, 1}, std::string("trace is longer than ") + std::to_string(kMaxTraceLines) + " lines (includes expanded)", raw);
       if (!raw.empty() && raw.back() == '\r') raw.pop_back();
       Line l;
       l.where = {name, lineno, 1};
@@ -156,7 +156,7 @@ class Loader {
       if (nl == text.size()) break;
     }
     if (!seen_version)
-      throw TraceError({name, 1, 1}, "empty trace: expected the version line `ffsim-trace " + std::to_string(kTraceVersion) + "`");
+      throw TraceError({name, 1, 1}, std::string("empty trace: expected the version line `ffsim-trace ") + std::to_string(kTraceVersion) + "`");
     dir_ = saved_dir;
     stack_.pop_back();
     stack_names_.pop_back();
@@ -171,7 +171,7 @@ class Loader {
     const fs::path p = fs::weakly_canonical(path, ec);
     const std::string r = root.string(), s = p.string();
     if (s.size() <= r.size() || s.compare(0, r.size(), r) != 0 || (s[r.size()] != '/' && r.back() != '/'))
-      throw fail("`" + path + "` is outside the allowed directory " + opt_.file_root);
+      throw fail(std::string("`") + path + "` is outside the allowed directory " + opt_.file_root);
   }
 
   std::string resolve(const std::string& p) const {
@@ -182,11 +182,11 @@ class Loader {
   [[noreturn]] void fail(const Line& l, std::size_t k, const std::string& m) const { throw TraceError(l.at(k), m, l.text); }
 
   void version_line(const Line& l) {
-    const std::string want = "ffsim-trace " + std::to_string(kTraceVersion);
-    if (l.tok[0].text != "ffsim-trace") fail(l, 0, "expected the version line `" + want + "` first");
-    if (l.tok.size() != 2) fail(l, l.tok.size() > 2 ? 2 : 0, "the version line is `" + want + "`");
+    const std::string want = std::string("ffsim-trace ") + std::to_string(kTraceVersion);
+    if (l.tok[0].text != "ffsim-trace") fail(l, 0, std::string("expected the version line `") + want + "` first");
+    if (l.tok.size() != 2) fail(l, l.tok.size() > 2 ? 2 : 0, std::string("the version line is `") + want + "`");
     if (l.tok[1].text != std::to_string(kTraceVersion))
-      fail(l, 1, "unsupported trace version `" + l.tok[1].text + "`; this ffsim reads version " + std::to_string(kTraceVersion));
+      fail(l, 1, std::string("unsupported trace version `") + l.tok[1].text + "`; this ffsim reads version " + std::to_string(kTraceVersion));
   }
 
   std::optional<double> lookup(const std::string& n) const {
@@ -211,8 +211,8 @@ class Loader {
 
   void expect_count(const Line& l, std::size_t min, std::size_t max, const std::string& usage) const {
     const std::size_t n = l.tok.size() - 1;
-    if (n < min) throw TraceError(l.end(), "`" + l.tok[0].text + "` needs more arguments: " + usage, l.text);
-    if (n > max) fail(l, max + 1, "too many arguments: " + usage);
+    if (n < min) throw TraceError(l.end(), std::string("`") + l.tok[0].text + "` needs more arguments: " + usage, l.text);
+    if (n > max) fail(l, max + 1, std::string("too many arguments: ") + usage);
   }
 
   std::string new_name(const Line& l, std::size_t k, const char* what) {
@@ -242,8 +242,8 @@ class Loader {
     const long long px = static_cast<long long>(prog_.width) * prog_.height;
     if (prog_.width < 1 || prog_.height < 1 || prog_.width > kMaxFramebufferSide || prog_.height > kMaxFramebufferSide ||
         px > opt_.max_pixels) {
-      const std::string m = "framebuffer size " + std::to_string(prog_.width) + "x" + std::to_string(prog_.height) +
-                            " is out of range (1.." + std::to_string(kMaxFramebufferSide) + " per side, at most " +
+      const std::string m = std::string("framebuffer size ") + std::to_string(prog_.width) + "x" + std::to_string(prog_.height) +
+                            std::string(" is out of range (1..") + std::to_string(kMaxFramebufferSide) + " per side, at most " +
                             std::to_string(opt_.max_pixels) + " pixels)";
       if (opt_.size) throw TraceError({"--size", 1, 1}, m);
       throw TraceError(size_at_, m, size_line_);
@@ -251,8 +251,8 @@ class Loader {
   }
 
   void require_unfrozen(const Line& l, const SourceLoc& previous) const {
-    if (!previous.empty()) fail(l, 0, "`" + l.tok[0].text + "` is already set at " + previous.str());
-    if (frozen_) fail(l, 0, "`" + l.tok[0].text + "` must come before the first GL command or output");
+    if (!previous.empty()) fail(l, 0, std::string("`") + l.tok[0].text + "` is already set at " + previous.str());
+    if (frozen_) fail(l, 0, std::string("`") + l.tok[0].text + "` must come before the first GL command or output");
   }
 
   BufferKind buffer_kind(const Line& l, std::size_t k) const {
@@ -262,11 +262,11 @@ class Loader {
     else if (s == "alpha") b = BufferKind::Alpha;
     else if (s == "stencil") b = BufferKind::Stencil;
     else if (s == "depth") b = BufferKind::Depth;
-    else fail(l, k, "expected a buffer: color, alpha, stencil or depth; got `" + s + "`");
+    else fail(l, k, std::string("expected a buffer: color, alpha, stencil or depth; got `") + s + "`");
     if (b == BufferKind::Stencil && prog_.profile.stencil_bits == 0)
-      fail(l, k, "the framebuffer has no stencil buffer (profile " + prog_.profile.name + ")");
+      fail(l, k, std::string("the framebuffer has no stencil buffer (profile ") + prog_.profile.name + ")");
     if (b == BufferKind::Depth && prog_.profile.depth_bits == 0)
-      fail(l, k, "the framebuffer has no depth buffer (profile " + prog_.profile.name + ")");
+      fail(l, k, std::string("the framebuffer has no depth buffer (profile ") + prog_.profile.name + ")");
     return b;
   }
 
@@ -295,20 +295,20 @@ class Loader {
     else if (c == "hash") hash(l);
     else if (c == "expect") expect(l);
     else if (const CommandDef* d = cmds_.find(c)) gl_call(l, *d);
-    else fail(l, 0, "unknown command `" + c + "`");
+    else fail(l, 0, std::string("unknown command `") + c + "`");
   }
 
   void param(const Line& l) {
     if (l.tok.size() < 3) throw TraceError(l.end(), "`param` needs a name and a default: param NAME DEFAULT [description]", l.text);
     const std::string name = new_name(l, 1, "parameter");
     for (const auto& p : prog_.params)
-      if (p.name == name) fail(l, 1, "parameter `" + name + "` is already declared at " + p.where.str());
+      if (p.name == name) fail(l, 1, std::string("parameter `") + name + "` is already declared at " + p.where.str());
     Param p;
     p.name = name;
     p.where = l.at(1);
     p.default_value = eval(l, 2);
     p.value = p.default_value;
-    for (std::size_t k = 3; k < l.tok.size(); ++k) p.description += (k > 3 ? " " : "") + l.tok[k].text;
+    for (std::size_t k = 3; k < l.tok.size(); ++k) p.description += std::string(k > 3 ? " " : "") + l.tok[k].text;
     if (auto it = sets_.find(name); it != sets_.end()) {
       const std::string line = name + "=" + it->second;
       p.value = Expression::parse(it->second, {"--set", 1, static_cast<int>(name.size()) + 2}, line).eval(lookup_fn());
@@ -350,14 +350,14 @@ class Loader {
 
   void include(const Line& l, int depth) {
     expect_count(l, 1, 1, "include FILE");
-    if (depth + 1 > kMaxIncludeDepth) fail(l, 0, "includes nested more than " + std::to_string(kMaxIncludeDepth) + " deep");
+    if (depth + 1 > kMaxIncludeDepth) fail(l, 0, std::string("includes nested more than ") + std::to_string(kMaxIncludeDepth) + " deep");
     load_file(resolve(l.tok[1].text), &l, 1, depth + 1);
   }
 
   void add_resource(const Line& l, const std::string& name, std::string kind, std::string source, Image im) {
     const long long px = static_cast<long long>(im.width) * im.height;
     if (px > opt_.max_pixels)
-      fail(l, 2, "image size " + std::to_string(im.width) + "x" + std::to_string(im.height) + " exceeds the limit of " +
+      fail(l, 2, std::string("image size ") + std::to_string(im.width) + "x" + std::to_string(im.height) + " exceeds the limit of " +
                      std::to_string(opt_.max_pixels) + " pixels");
     Resource r;
     r.name = name;
@@ -372,7 +372,7 @@ class Loader {
   std::string resource_name(const Line& l) {
     const std::string name = new_name(l, 1, "image");
     if (auto it = resources_.find(name); it != resources_.end())
-      fail(l, 1, "image `" + name + "` is already defined at " + prog_.resources[it->second].where.str());
+      fail(l, 1, std::string("image `") + name + "` is already defined at " + prog_.resources[it->second].where.str());
     return name;
   }
 
@@ -397,15 +397,15 @@ class Loader {
     if (!g) {
       std::vector<std::string> names;
       for (const auto& [n, d] : generators().all()) names.push_back(n);
-      fail(l, 2, "unknown generator `" + l.tok[2].text + "` (this build has " + join_or(names) + ")");
+      fail(l, 2, std::string("unknown generator `") + l.tok[2].text + "` (this build has " + join_or(names) + ")");
     }
     std::map<std::string, GeneratorArgs::Value> values;
     for (std::size_t k = 3; k < l.tok.size(); ++k) {
       const std::string& t = l.tok[k].text;
       const auto eq = t.find('=');
-      if (eq == std::string::npos || eq == 0 || l.tok[k].quoted) fail(l, k, "expected key=value, got `" + t + "`");
+      if (eq == std::string::npos || eq == 0 || l.tok[k].quoted) fail(l, k, std::string("expected key=value, got `") + t + "`");
       const std::string key = t.substr(0, eq);
-      if (values.count(key)) fail(l, k, "key `" + key + "` is given twice");
+      if (values.count(key)) fail(l, k, std::string("key `") + key + "` is given twice");
       values[key] = {t.substr(eq + 1), {l.where.file, l.where.line, l.tok[k].column + static_cast<int>(eq) + 1}, false};
     }
     GeneratorArgs args(std::move(values), lookup_fn(), l.text, opt_.max_pixels);
@@ -431,7 +431,7 @@ class Loader {
     std::string source;
     for (std::size_t k = 3; k < l.tok.size(); ++k) {
       ex.push_back(Expression::parse(l.tok[k].text, l.at(k), l.text));
-      source += (k > 3 ? " " : "") + l.tok[k].text;
+      source += std::string(k > 3 ? " " : "") + l.tok[k].text;
     }
     Image im = Image::make(width, 1, channels, SampleType::F32);
     double i = 0, x = 0;
@@ -454,7 +454,7 @@ class Loader {
         }
         // Converting a double beyond the binary32 range to float is undefined: check first.
         if (!(std::fabs(v) <= static_cast<double>(std::numeric_limits<float>::max())))
-          fail(l, 3 + static_cast<std::size_t>(c), "value " + format_number(v) + " at i = " + std::to_string(k) + " is outside the binary32 range");
+          fail(l, 3 + static_cast<std::size_t>(c), std::string("value ") + format_number(v) + " at i = " + std::to_string(k) + " is outside the binary32 range");
         im.f32[im.index(k, 0, c)] = static_cast<float>(v);
       }
     }
@@ -470,14 +470,14 @@ class Loader {
     bool bad = f.empty() || p.is_absolute() || f.back() == '/';
     for (const auto& part : p)
       if (!part.empty() && part.string()[0] == '.') bad = true;  // `..`, `.`, hidden names (temporaries)
-    if (bad) fail(l, 2, "dump file `" + f + "` must be a relative path inside the output directory (no `..`, no names starting with `.`)");
+    if (bad) fail(l, 2, std::string("dump file `") + f + "` must be a relative path inside the output directory (no `..`, no names starting with `.`)");
     std::string ext = p.extension().string();
     for (auto& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
     if (ext != ".png" && ext != ".exr" && ext != ".tif" && ext != ".tiff")
-      fail(l, 2, "dump file `" + f + "` needs the extension .png, .exr, .tif or .tiff");
+      fail(l, 2, std::string("dump file `") + f + "` needs the extension .png, .exr, .tif or .tiff");
     if (f.rfind("passes/", 0) == 0) fail(l, 2, "the directory passes/ is reserved for --dump-each-pass");
     if (auto it = dump_files_.find(p.lexically_normal().string()); it != dump_files_.end())
-      fail(l, 2, "`" + f + "` is already written by the dump at " + it->second.str());
+      fail(l, 2, std::string("`") + f + "` is already written by the dump at " + it->second.str());
     dump_files_[p.lexically_normal().string()] = l.at(0);
     s.file = p.lexically_normal().string();
     prog_.steps.push_back(std::move(s));
@@ -500,7 +500,7 @@ class Loader {
       const std::string& h = l.tok[3].text;
       bool ok = h.size() == 16;
       for (char ch : h) ok = ok && std::isxdigit(static_cast<unsigned char>(ch));
-      if (!ok) fail(l, 3, "expected a hash of 16 hex digits, got `" + h + "`");
+      if (!ok) fail(l, 3, std::string("expected a hash of 16 hex digits, got `") + h + "`");
       s.hash = std::stoull(h, nullptr, 16);
       prog_.steps.push_back(std::move(s));
     } else if (what == "pixel") {
@@ -512,12 +512,12 @@ class Loader {
       const std::size_t want = s.buffer == BufferKind::Color ? 4 : 1;
       std::size_t k = 5;
       for (; k < l.tok.size() && l.tok[k].text != "tol"; ++k) {
-        if (s.values.size() == want) fail(l, k, "too many values: " + buffer_kind_name(s.buffer) + " has " + std::to_string(want));
+        if (s.values.size() == want) fail(l, k, std::string("too many values: ") + buffer_kind_name(s.buffer) + " has " + std::to_string(want));
         s.values.push_back(eval(l, k));
       }
       if (s.values.size() < want)
         throw TraceError(k < l.tok.size() ? l.at(k) : l.end(),
-                         "expected " + std::to_string(want) + " value" + (want > 1 ? "s" : "") + " for " +
+                         std::string("expected ") + std::to_string(want) + " value" + std::string(want > 1 ? "s" : "") + " for " +
                              buffer_kind_name(s.buffer) + ", got " + std::to_string(s.values.size()),
                          l.text);
       if (k < l.tok.size()) {
@@ -526,7 +526,7 @@ class Loader {
           fail(l, k + 2, "nothing may follow `tol T`");
         }
         s.tol = eval(l, k + 1);
-        if (s.tol < 0) fail(l, k + 1, "the tolerance must not be negative, got " + format_number(s.tol));
+        if (s.tol < 0) fail(l, k + 1, std::string("the tolerance must not be negative, got ") + format_number(s.tol));
       }
       prog_.steps.push_back(std::move(s));
     } else if (what == "error") {
@@ -541,7 +541,7 @@ class Loader {
       s.enabled = boolean(l, 3, "the state");
       prog_.steps.push_back(std::move(s));
     } else {
-      fail(l, 1, "expected hash, pixel, error or enabled after `expect`, got `" + what + "`");
+      fail(l, 1, std::string("expected hash, pixel, error or enabled after `expect`, got `") + what + "`");
     }
   }
 
@@ -549,11 +549,11 @@ class Loader {
     const std::string& t = l.tok[k].text;
     if (!t.empty() && ((t[0] >= 'A' && t[0] <= 'Z') || (t[0] >= 'a' && t[0] <= 'z') || t[0] == '_')) {
       const auto v = gl::enum_value(t);
-      if (!v) fail(l, k, "unknown GL enum `" + t + "`");
+      if (!v) fail(l, k, std::string("unknown GL enum `") + t + "`");
       if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), *v) == allowed.end()) {
         std::vector<std::string> names;
         for (GLenum a : allowed) names.push_back(gl::enum_name(a));
-        fail(l, k, "`" + t + "` is not allowed for " + what + " (expected " + join_or(names) + ")");
+        fail(l, k, std::string("`") + t + "` is not allowed for " + what + " (expected " + join_or(names) + ")");
       }
       return *v;
     }
@@ -585,7 +585,7 @@ class Loader {
     }
     std::size_t k = 1;
     for (const auto& a : d.args) {
-      const std::string what = "`" + a.name + "` of " + d.name;
+      const std::string what = std::string("`") + a.name + "` of " + d.name;
       ArgValue v;
       v.kind = a.kind;
       v.where = l.at(k);
@@ -599,7 +599,7 @@ class Loader {
         case ArgKind::Bitfield: v.i = bitfield(l, k, what, a.allowed); ++k; break;
         case ArgKind::Image: {
           auto it = resources_.find(l.tok[k].text);
-          if (it == resources_.end()) fail(l, k, "unknown image `" + l.tok[k].text + "` (define it with image, generate or table)");
+          if (it == resources_.end()) fail(l, k, std::string("unknown image `") + l.tok[k].text + "` (define it with image, generate or table)");
           v.image = prog_.resources[it->second].image;
           ++k;
           break;
@@ -629,7 +629,7 @@ class Loader {
     const std::string& t = l.tok[k].text;
     if (t == "1" || t == "GL_TRUE" || t == "TRUE") return true;
     if (t == "0" || t == "GL_FALSE" || t == "FALSE") return false;
-    fail(l, k, "expected 0, 1, GL_TRUE or GL_FALSE for " + what + ", got `" + t + "`");
+    fail(l, k, std::string("expected 0, 1, GL_TRUE or GL_FALSE for ") + what + ", got `" + t + "`");
   }
 
   std::int64_t bitfield(const Line& l, std::size_t k, const std::string& what, const std::vector<GLenum>& bits) const {
@@ -640,14 +640,14 @@ class Loader {
       const std::size_t bar = t.find('|', start);
       const std::string part = t.substr(start, bar == std::string::npos ? std::string::npos : bar - start);
       const SourceLoc at{l.where.file, l.where.line, l.tok[k].column + static_cast<int>(start)};
-      if (part.empty()) throw TraceError(at, "empty part in the bitfield " + what, l.text);
+      if (part.empty()) throw TraceError(at, std::string("empty part in the bitfield ") + what, l.text);
       if ((part[0] >= 'A' && part[0] <= 'Z') || (part[0] >= 'a' && part[0] <= 'z') || part[0] == '_') {
         const auto e = gl::enum_value(part);
-        if (!e) throw TraceError(at, "unknown GL enum `" + part + "`", l.text);
+        if (!e) throw TraceError(at, std::string("unknown GL enum `") + part + "`", l.text);
         if (!bits.empty() && std::find(bits.begin(), bits.end(), *e) == bits.end()) {
           std::vector<std::string> names;
           for (GLenum b : bits) names.push_back(bit_name(b));
-          throw TraceError(at, "`" + part + "` is not allowed in " + what + " (expected " + join_or(names) + ")", l.text);
+          throw TraceError(at, std::string("`") + part + "` is not allowed in " + what + " (expected " + join_or(names) + ")", l.text);
         }
         v |= *e;
       } else {
@@ -691,7 +691,7 @@ Program load_trace_text(const std::string& text, const std::string& name, const 
   Loader l(options);
   if (text.size() > kMaxTraceFileBytes)
     throw TraceError({}, name + ": larger than " + std::to_string(kMaxTraceFileBytes) + " bytes");
-  l.load_text(text, name, "<text>" + name, 0);
+  l.load_text(text, name, std::string("<text>") + name, 0);
   return l.finish();
 }
 

@@ -97,7 +97,7 @@ TEST_CASE("trace expr: evaluation errors name the operator") {
 
 TEST_CASE("trace expr: nesting is capped") {
   std::string deep(200, '(');
-  deep += "1" + std::string(200, ')');
+  deep += std::string("1") + std::string(200, ')');
   const std::string m = err(deep);
   CHECK(m.find("expression nested too deeply (more than 64 levels)") != std::string::npos);
   std::string minus(5000, '-');

@@ -26,7 +26,7 @@ std::string load_error(const std::string& text, const LoadOptions& opt = {}) {
 
 // A fresh directory under the system temp directory for file tests.
 fs::path temp_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("ffsim-test-" + std::to_string(::getpid()) + "-" + name);
+  const fs::path d = fs::temp_directory_path() / (std::string("ffsim-test-") + std::to_string(::getpid()) + "-" + name);
   fs::remove_all(d);
   fs::create_directories(d);
   return d;
@@ -257,7 +257,7 @@ TEST_CASE("trace load: files, includes and cycles") {
     FAIL("expected a refusal");
   } catch (const TraceError& e) {
     CHECK(std::string(e.what()) == (d / "sub/c.trace").string() + ":2:9: `" + (d / "sub/../c.trace").string() +
-                                       "` is outside the allowed directory " + (d / "sub").string());
+                                       std::string("` is outside the allowed directory ") + (d / "sub").string());
   }
   // A directory is not a trace.
   write_file(d / "dir.trace", V + "include sub\n");

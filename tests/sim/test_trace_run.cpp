@@ -37,7 +37,7 @@ Ran run_text(const std::string& text, RunOptions ro = {}) {
   return x;
 }
 fs::path temp_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("ffsim-test-" + std::to_string(::getpid()) + "-" + name);
+  const fs::path d = fs::temp_directory_path() / (std::string("ffsim-test-") + std::to_string(::getpid()) + "-" + name);
   fs::remove_all(d);
   fs::create_directories(d);
   return d;
