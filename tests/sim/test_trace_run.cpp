@@ -126,6 +126,25 @@ TEST_CASE("trace run: the paper's color matrix M from lx and ly") {
   CHECK(m[3][2] == 0);
 }
 
+TEST_CASE("trace run: matrices.trace leaves the stacks as a hand computation says") {
+  const Program p = load_trace_file((kExamples / "matrices.trace").string(), {});
+  Context ctx(p.profile, p.width, p.height);
+  std::ostringstream out;
+  const RunResult r = run_program_on(ctx, p, {}, out);
+  CHECK(r.ok);
+  CHECK(r.gl_errors.empty());
+  // glPushMatrix / glPopMatrix undo translate-rotate-scale; glMultMatrixd leaves a
+  // translation by 0.5 in x (column 3, row 0).
+  CHECK(ctx.modelview().top()[3][0] == 0.5);
+  CHECK(ctx.modelview().top()[0][0] == 1);
+  CHECK(ctx.modelview().top()[0][1] == 0);
+  // glOrtho(0, 16, 0, 16, -1, 1): x scale 2/16, x offset -1.
+  CHECK(ctx.projection().top()[0][0] == 0.125);
+  CHECK(ctx.projection().top()[3][0] == -1);
+  CHECK(ctx.texture_matrix(0).top() == glm::dmat4(1.0));
+  CHECK(!ctx.write_masks().depth);
+}
+
 TEST_CASE("trace run: GL errors carry the trace line and --strict stops at the first") {
   const std::string t = V + "framebuffer 4 4\nglScissor 0 0 -1 1\nglClear GL_COLOR_BUFFER_BIT\n";
   const Ran a = run_text(t);
@@ -205,7 +224,7 @@ TEST_CASE("trace run: a hash equals the hash of the same framebuffer built direc
 
 TEST_CASE("trace run: every example trace replays without errors or failed expects") {
   const auto files = example_traces();
-  CHECK(files.size() >= 6);
+  CHECK(files.size() >= 8);
   for (const auto& f : files) {
     CAPTURE(f.string());
     const Program p = load_trace_file(f.string(), {});
