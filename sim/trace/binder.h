@@ -169,7 +169,16 @@ class CommandTable {
 // Every bound GL command of this build (sim/trace/commands.cpp lists the areas).
 const CommandTable& gl_commands();
 
-// Per-area registration functions, called by gl_commands().
+// Per-area registration functions (sim/trace/commands_<area>.cpp), called by
+// gl_commands(); each area declares its own below its marker.
 void register_core_commands(CommandTable& t);
+// ==== [issue 3] pixel transfer and pixel rectangles ====
+
+// ==== [issue 4a] geometry, rasterization, texturing ====
+
+// ==== [issue 4b] per-fragment operations ====
+
+// ==== [issue 5] register combiners ====
+
 
 }  // namespace ffsim::trace
