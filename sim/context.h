@@ -33,6 +33,7 @@
 #include "pipeline/texture/texture_object.h"
 #include "sim/framebuffer.h"
 #include "sim/gl_error.h"
+#include "sim/probe.h"
 
 namespace ffsim {
 
@@ -343,6 +344,16 @@ class Context {
 
 
   // ==== [issue 6] traces: hooks ====
+  // Worker threads a stage may use (at least 1; `ffsim replay --threads N`).
+  // Results never depend on it: the trace tests compare hashes for 1 and 2 threads.
+  void set_threads(int n) { threads_ = n < 1 ? 1 : n; }
+  int threads() const { return threads_; }
+  // Single-pixel tracing (`--probe X,Y`, sim/probe.h): stages record what they did
+  // at the probed pixel; the trace executor prints and clears the records per pass.
+  ProbeLog& probe() { return probe_; }
+  const ProbeLog& probe() const { return probe_; }
+  // "color codes (...) = (...), stencil 3, depth 16777215" at (x, y), for probe records.
+  std::string probe_describe_buffers(int x, int y) const;
 
 
  private:
@@ -471,6 +482,8 @@ class Context {
 
 
   // ==== [issue 6] state ====
+  int threads_ = 1;
+  ProbeLog probe_;
 
 };
 

@@ -10,6 +10,13 @@ namespace {
 double clamp01(double v) { return std::clamp(v, 0.0, 1.0); }
 }  // namespace
 
+std::string Context::probe_describe_buffers(int x, int y) const {
+  std::string s = std::string("color ") + describe_color(fb_, x, y);
+  if (fb_.has_stencil()) s += std::string(", stencil ") + std::to_string(fb_.stencil()[fb_.index(x, y)]);
+  if (fb_.has_depth()) s += std::string(", depth ") + std::to_string(fb_.depth()[fb_.index(x, y)]);
+  return s;
+}
+
 void Context::clearColor(double r, double g, double b, double a) {
   clear_.color = {clamp01(r), clamp01(g), clamp01(b), clamp01(a)};  // §4.2.3: clamped when specified
 }
@@ -42,10 +49,15 @@ void Context::clear(GLbitfield mask) {
     return;
   }
   const Rect r = write_rect();  // §4.2.3: clear honours pixel ownership, scissor and masks
+  const bool probed = probe_.inside(r);
+  std::string before;
+  if (probed) before = probe_describe_buffers(probe_.x(), probe_.y());
   if (mask & gl::COLOR_BUFFER_BIT) fb_.clear_color(r, clear_.color, masks_.color);
   if (mask & gl::STENCIL_BUFFER_BIT) fb_.clear_stencil(r, clear_.stencil, masks_.stencil);
   if ((mask & gl::DEPTH_BUFFER_BIT) && masks_.depth) fb_.clear_depth(r, clear_.depth);
   // ACCUM_BUFFER_BIT: this context has no accumulation buffer, so nothing to clear.
+  if (probed)
+    probe_.record("clear", before + " -> " + probe_describe_buffers(probe_.x(), probe_.y()));
 }
 
 }  // namespace ffsim

@@ -50,7 +50,22 @@ void Context::write_fragments(FragmentSpan& span) {
   else b.codes = fb_.codes().data();
   if (fb_.has_stencil()) b.stencil = fb_.stencil().data();
   if (fb_.has_depth()) b.depth = fb_.depth().data();
+  // --probe: the probed pixel's fragment and framebuffer before and after the
+  // per-fragment operations (the plan itself is not instrumented).
+  int probed = -1;
+  std::string before;
+  for (int i = 0; i < span.count && probed < 0; ++i)
+    if (probe_.hits(span.x0 + i, span.y)) probed = i;
+  if (probed >= 0) before = describe_color(fb_, span.x0 + probed, span.y);
+  const bool fl = fb_.format().float_color();
+  std::string fragment;
+  if (probed >= 0)
+    fragment = fl ? describe_values(&span.values[4 * static_cast<std::size_t>(probed)])
+                  : describe_codes(&span.codes[4 * static_cast<std::size_t>(probed)], fb_.format().color_bits);
   run_fragment_plan(*fragment_current_plan_, fragment_current_constants_, span, b, fb_.width());
+  if (probed >= 0)
+    probe_.record("write_fragments", std::string("fragment ") + fragment + ", framebuffer " + before + " -> " +
+                                         describe_color(fb_, span.x0 + probed, span.y));
 }
 
 }  // namespace ffsim

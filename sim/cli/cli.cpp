@@ -29,10 +29,10 @@ Subcommand planned(std::string name, std::string summary, std::string issue) {
 
 const std::vector<Subcommand>& subcommands() {
   static const std::vector<Subcommand> all = {
-      planned("replay", "replay a command trace and write its dumps", "issue #6"),
-      planned("diff", "compare two images or dump sets", "issue #6"),
-      planned("compare", "replay two traces (or one under two profiles) and diff them", "issue #6"),
-      planned("info", "show a trace's parameters, resources and passes", "issue #6"),
+      replay_command(),
+      diff_command(),
+      compare_command(),
+      info_command(),
       planned("bench", "run time against error, and per-stage throughput", "issues #9, #10"),
       bumpshadow_command(),
       profiles_command(),

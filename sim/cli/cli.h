@@ -33,5 +33,9 @@ bool wants_help(const std::vector<std::string>& args);
 Subcommand demo_command();
 Subcommand profiles_command();
 Subcommand bumpshadow_command();
+Subcommand replay_command();
+Subcommand diff_command();
+Subcommand compare_command();
+Subcommand info_command();
 
 }  // namespace ffsim::cli

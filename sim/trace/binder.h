@@ -1,0 +1,184 @@
+// The typed-argument binder: how a GL entry point of the Context becomes a trace
+// command. Binding a call is one line in the area's file (commands_<area>.cpp):
+//
+//   t.bind("glClearColor", &Context::clearColor, {Float32("red"), Float32("green"), Float32("blue"), Float32("alpha")});
+//   t.bind("glMatrixMode", &Context::matrixMode, {Enum("mode", {gl::MODELVIEW, gl::PROJECTION, gl::TEXTURE, gl::COLOR})});
+//   t.bind("glCopyPixels", &Context::copyPixels, {Int("x"), Int("y"), Int("width"), Int("height"), Enum("type")}).pass();
+//
+// The argument specs say how each trace token is read; the member function's
+// parameter types say what the Context receives (checked when the table is built,
+// so a mismatch fails every test run, not a user's trace). `.pass()` marks a
+// command that writes the framebuffer (a draw or a copy): a pass boundary for
+// --dump-each-pass, --explain and --probe. Irregular calls use `add` with a lambda.
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <map>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "pipeline/gl/enums.h"
+#include "sim/context.h"
+#include "sim/image_io.h"
+
+namespace ffsim::trace {
+
+enum class ArgKind {
+  Enum,      // a GL token by name (GL_MODELVIEW or MODELVIEW) or a number; optional allowed set
+  Int,       // an expression with an integral value in [min, max]
+  Float,     // an expression, binary64 (GLdouble / GLclampd parameters)
+  Float32,   // an expression rounded to binary32 (GLfloat / GLclampf parameters)
+  Bool,      // 0, 1, GL_TRUE, GL_FALSE
+  Bitfield,  // tokens joined by `|` (GL_COLOR_BUFFER_BIT|GL_STENCIL_BUFFER_BIT) or a number
+  Image,     // the name of a client image (`image`, `generate` or `table`)
+  Numbers,   // `count` expressions (binary64), or all remaining ones when count is 0
+};
+
+struct ArgSpec {
+  ArgKind kind = ArgKind::Float;
+  std::string name;              // the GL parameter name, used in messages
+  std::vector<GLenum> allowed;   // Enum: allowed values, Bitfield: allowed bits (empty: any)
+  std::int64_t min = std::numeric_limits<std::int32_t>::min();  // Int range
+  std::int64_t max = std::numeric_limits<std::int32_t>::max();
+  int count = 1;                 // Numbers: how many (0 = one or more, to the end of the line)
+  bool float32 = false;          // Numbers: round each to binary32
+};
+
+ArgSpec Enum(std::string name, std::vector<GLenum> allowed = {});
+ArgSpec Int(std::string name, std::int64_t min = std::numeric_limits<std::int32_t>::min(),
+            std::int64_t max = std::numeric_limits<std::int32_t>::max());
+ArgSpec Float(std::string name);
+ArgSpec Float32(std::string name);
+ArgSpec Bool(std::string name);
+ArgSpec Bitfield(std::string name, std::vector<GLenum> bits = {});
+ArgSpec ClientImage(std::string name);
+ArgSpec Numbers(std::string name, int count, bool float32 = false);
+
+// One evaluated argument.
+struct ArgValue {
+  ArgKind kind = ArgKind::Float;
+  std::int64_t i = 0;                 // Enum, Int, Bool, Bitfield
+  double f = 0;                       // Float, Float32 (already rounded)
+  std::vector<double> list;           // Numbers
+  std::shared_ptr<const Image> image; // Image
+  std::string text;                   // the token as written (for messages and --explain)
+  SourceLoc where;
+};
+
+class Args {
+ public:
+  explicit Args(const std::vector<ArgValue>& v) : v_(v) {}
+  std::size_t size() const { return v_.size(); }
+  const ArgValue& operator[](std::size_t k) const { return v_.at(k); }
+  GLenum enum_at(std::size_t k) const { return static_cast<GLenum>(v_.at(k).i); }
+  std::int64_t int_at(std::size_t k) const { return v_.at(k).i; }
+  double float_at(std::size_t k) const { return v_.at(k).f; }
+  bool bool_at(std::size_t k) const { return v_.at(k).i != 0; }
+  const std::vector<double>& numbers_at(std::size_t k) const { return v_.at(k).list; }
+  const Image& image_at(std::size_t k) const { return *v_.at(k).image; }
+
+ private:
+  const std::vector<ArgValue>& v_;
+};
+
+using CommandFn = std::function<void(Context&, const Args&)>;
+
+struct CommandDef {
+  std::string name;  // "glClearColor"
+  std::vector<ArgSpec> args;
+  CommandFn call;
+  bool is_pass = false;  // writes the framebuffer: a pass boundary
+  CommandDef& pass_boundary() { is_pass = true; return *this; }
+  CommandDef& pass() { return pass_boundary(); }
+  std::string signature() const;  // "glClearColor red green blue alpha"
+};
+
+namespace detail {
+template <class P>
+constexpr bool accepts(ArgKind k) {
+  using T = std::remove_cvref_t<P>;
+  if constexpr (std::is_same_v<T, bool>) return k == ArgKind::Bool;
+  else if constexpr (std::is_floating_point_v<T>) return k == ArgKind::Float || k == ArgKind::Float32 || k == ArgKind::Int;
+  else if constexpr (std::is_integral_v<T>) return k == ArgKind::Enum || k == ArgKind::Int || k == ArgKind::Bitfield || k == ArgKind::Bool;
+  else if constexpr (std::is_same_v<T, const double*>) return k == ArgKind::Numbers;
+  else if constexpr (std::is_same_v<T, std::vector<double>>) return k == ArgKind::Numbers;
+  else if constexpr (std::is_same_v<T, Image>) return k == ArgKind::Image;
+  else return false;
+}
+template <class P>
+decltype(auto) convert(const ArgValue& v) {
+  using T = std::remove_cvref_t<P>;
+  if constexpr (std::is_same_v<T, bool>) return v.i != 0;
+  else if constexpr (std::is_floating_point_v<T>) return static_cast<T>(v.kind == ArgKind::Int ? static_cast<double>(v.i) : v.f);
+  else if constexpr (std::is_integral_v<T>) return static_cast<T>(v.i);
+  else if constexpr (std::is_same_v<T, const double*>) return static_cast<const double*>(v.list.data());
+  else if constexpr (std::is_same_v<T, std::vector<double>>) return static_cast<const std::vector<double>&>(v.list);
+  else return static_cast<const Image&>(*v.image);
+}
+}  // namespace detail
+
+// Thrown while building a table when a binding is inconsistent (a programming
+// error in a commands_*.cpp file; the trace tests build the table and fail).
+struct BindError : std::logic_error {
+  using std::logic_error::logic_error;
+};
+
+class CommandTable {
+ public:
+  // A lambda command: `fn` reads the arguments through Args.
+  CommandDef& add(std::string name, std::vector<ArgSpec> args, CommandFn fn);
+
+  // A Context member bound argument by argument (return value ignored).
+  template <class R, class... P>
+  CommandDef& bind(std::string name, R (Context::*fn)(P...), std::vector<ArgSpec> args) {
+    if (args.size() != sizeof...(P))
+      throw BindError(name + ": " + std::to_string(args.size()) + " argument specs for a method with " +
+                      std::to_string(sizeof...(P)) + " parameters");
+    check_kinds<P...>(name, args);
+    return add(std::move(name), std::move(args), [fn](Context& c, const Args& a) {
+      call(c, fn, a, std::index_sequence_for<P...>{});
+    });
+  }
+
+  const CommandDef* find(const std::string& name) const;
+  const std::map<std::string, CommandDef>& all() const { return defs_; }
+
+ private:
+  template <class... P>
+  static void check_kinds(const std::string& name, const std::vector<ArgSpec>& args) {
+    using Accepts = bool (*)(ArgKind);
+    const Accepts accepts[] = {nullptr, &detail::accepts<P>...};
+    for (std::size_t k = 0; k < sizeof...(P) && k < args.size(); ++k)
+      if (!accepts[k + 1](args[k].kind))
+        throw BindError(name + ": argument " + std::to_string(k + 1) + " (" + args[k].name +
+                        ") has a spec kind the method parameter cannot take");
+  }
+  template <class R, class... P, std::size_t... I>
+  static void call(Context& c, R (Context::*fn)(P...), const Args& a, std::index_sequence<I...>) {
+    (c.*fn)(detail::convert<P>(a[I])...);
+  }
+
+  std::map<std::string, CommandDef> defs_;
+};
+
+// Every bound GL command of this build (sim/trace/commands.cpp lists the areas).
+const CommandTable& gl_commands();
+
+// Per-area registration functions (sim/trace/commands_<area>.cpp), called by
+// gl_commands(); each area declares its own below its marker.
+void register_core_commands(CommandTable& t);
+// ==== [issue 3] pixel transfer and pixel rectangles ====
+
+// ==== [issue 4a] geometry, rasterization, texturing ====
+
+// ==== [issue 4b] per-fragment operations ====
+
+// ==== [issue 5] register combiners ====
+
+
+}  // namespace ffsim::trace

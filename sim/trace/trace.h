@@ -1,0 +1,99 @@
+// Loading a command trace: lexing, includes, parameters, expressions, set-up
+// commands, client images, and the typed arguments of every GL call. Loading
+// evaluates everything that does not need the GL (expressions, tables, images,
+// argument types and enums), so a trace with any error in it is rejected before a
+// single command runs or a file is written. Format: docs/trace-format.md.
+#pragma once
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "pipeline/number/profile.h"
+#include "sim/framebuffer.h"
+#include "sim/hash.h"
+#include "sim/image_io.h"
+#include "sim/trace/binder.h"
+#include "sim/trace/error.h"
+
+namespace ffsim::trace {
+
+inline constexpr int kTraceVersion = 1;
+inline constexpr int kMaxIncludeDepth = 16;
+inline constexpr std::size_t kMaxTraceFileBytes = 4u << 20;  // per file
+inline constexpr long long kMaxTraceLines = 1000000;         // all files together, includes expanded
+inline constexpr std::uintmax_t kMaxTraceTotalBytes = 64u << 20;  // all files together, includes expanded
+inline constexpr int kMaxTableWidth = 65536;
+
+enum class StepKind { Call, Dump, Hash, ExpectHash, ExpectPixel, ExpectError, ExpectEnabled };
+
+struct Step {
+  StepKind kind = StepKind::Call;
+  SourceLoc where;        // the command's first token
+  std::string line_text;  // the whole line, for messages
+  std::string name;       // the command as written: "glClear", "dump", "expect", ...
+  const CommandDef* def = nullptr;  // Call
+  std::vector<ArgValue> args;       // Call
+  BufferKind buffer = BufferKind::Color;  // Dump, Hash, ExpectHash, ExpectPixel
+  std::string file;                       // Dump: path relative to the output directory
+  std::uint64_t hash = 0;                 // ExpectHash
+  int x = 0, y = 0;                       // ExpectPixel
+  std::vector<double> values;             // ExpectPixel: 4 for color, 1 otherwise
+  double tol = 0;                         // ExpectPixel
+  GLenum error = gl::NO_ERROR;            // ExpectError; ExpectEnabled: the capability
+  bool enabled = false;                   // ExpectEnabled
+  bool is_pass() const { return kind == StepKind::Call && def && def->is_pass; }
+};
+
+struct Param {
+  std::string name;
+  double default_value = 0;
+  double value = 0;  // after --set
+  bool overridden = false;
+  std::string description;
+  SourceLoc where;
+};
+
+struct Resource {
+  std::string name;
+  std::string kind;    // "image", "generate", "table"
+  std::string source;  // file path, generator name, or table expressions
+  SourceLoc where;
+  std::shared_ptr<const Image> image;
+};
+
+struct Program {
+  std::string path;  // the top-level trace
+  int width = 256, height = 256;
+  Profile profile;
+  std::string profile_spec = "geforce256";  // as named in the trace or on the command line
+  std::vector<Param> params;
+  std::vector<Resource> resources;
+  std::vector<Step> steps;
+  std::vector<std::string> files;  // every trace file read, in order
+  int pass_count() const;
+};
+
+struct LoadOptions {
+  std::vector<std::pair<std::string, std::string>> sets;  // --set NAME=EXPR, in order
+  std::string profile;                                    // --profile NAME|FILE (overrides the trace)
+  std::optional<std::pair<int, int>> size;                // --size WxH (overrides `framebuffer`)
+  long long max_pixels = kMaxFramebufferPixels;           // framebuffer, images and tables
+  std::string file_root;  // non-empty: every file read must lie under this directory
+  const CommandTable* commands = nullptr;  // default: gl_commands()
+};
+
+// Throws TraceError.
+Program load_trace_file(const std::string& path, const LoadOptions& options);
+// `name` stands for the file name in messages; includes resolve relative to its directory.
+Program load_trace_text(const std::string& text, const std::string& name, const LoadOptions& options);
+
+// Parses "NAME=EXPR" (a --set argument); throws TraceError naming `--set`.
+std::pair<std::string, std::string> parse_set_argument(const std::string& arg);
+
+std::string buffer_kind_name(BufferKind k);
+
+}  // namespace ffsim::trace
