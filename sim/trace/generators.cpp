@@ -4,6 +4,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "bumpshadow/generators.h"
 #include "bumpshadow/heightfield.h"
 
 namespace ffsim::trace {
