@@ -193,6 +193,7 @@ void Context::draw_pixels(int width, int height, GLenum format, GLenum type, con
 }
 
 void Context::drawPixels(int width, int height, GLenum format, GLenum type, const void* data) {
+  if (reject_in_begin("glDrawPixels")) return;
   static const char* fn = "glDrawPixels";
   if (width < 0 || height < 0) {
     error(gl::INVALID_VALUE, fn, "width and height must not be negative");
@@ -258,6 +259,7 @@ void Context::read_pixels(int x, int y, int width, int height, GLenum format, GL
 }
 
 void Context::readPixels(int x, int y, int width, int height, GLenum format, GLenum type, void* data) {
+  if (reject_in_begin("glReadPixels")) return;
   static const char* fn = "glReadPixels";
   if (width < 0 || height < 0) {
     error(gl::INVALID_VALUE, fn, "width and height must not be negative");
@@ -315,6 +317,7 @@ void Context::copy_pixels(int x, int y, int width, int height, GLenum type) {
 }
 
 void Context::copyPixels(int x, int y, int width, int height, GLenum type) {
+  if (reject_in_begin("glCopyPixels")) return;
   static const char* fn = "glCopyPixels";
   if (type != gl::COLOR && type != gl::STENCIL && type != gl::DEPTH) {
     error(gl::INVALID_ENUM, fn, gl::enum_name(type) + " is not COLOR, STENCIL or DEPTH");
