@@ -91,6 +91,10 @@ Subcommand info_command() {
           out << "  dump " << trace::buffer_kind_name(st.buffer) << " " << st.file << "  " << st.where.str() << "\n";
           any = true;
           break;
+        case trace::StepKind::DumpImage:
+          out << "  dump image " << st.image.text << " " << st.file << "  " << st.where.str() << "\n";
+          any = true;
+          break;
         case trace::StepKind::Hash:
           out << "  hash " << trace::buffer_kind_name(st.buffer) << "  " << st.where.str() << "\n";
           any = true;

@@ -89,12 +89,19 @@ class Runner {
     const Framebuffer& fb = ctx.framebuffer();
     switch (s.kind) {
       case StepKind::Call: {
-        s.def->call(ctx, Args(s.args));
+        s.def->call(ctx, Args(s.args, &memory_));
         if (s.is_pass()) after_pass(ctx, s);
         break;
       }
       case StepKind::Dump: {
         Image im = buffer_image(fb, s.buffer);
+        write(s.file, im);
+        if (o_.keep_images) r_.images[s.file] = std::move(im);
+        break;
+      }
+      case StepKind::DumpImage: {
+        const std::vector<ArgValue> one{s.image};
+        Image im = Args(one, &memory_).image_at(0);
         write(s.file, im);
         if (o_.keep_images) r_.images[s.file] = std::move(im);
         break;
@@ -240,6 +247,7 @@ class Runner {
   std::size_t seen_errors_ = 0;
   std::vector<std::string> pending_;
   std::vector<std::pair<fs::path, fs::path>> temps_;
+  ClientMemory memory_;  // glReadPixels targets of this run
 };
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "pipeline/gl/enums.h"
+#include "sim/trace/expr.h"
 
 namespace ffsim::trace {
 
@@ -38,16 +39,53 @@ std::string explain_writes(const Context& ctx, const PassInfo& pass) {
 }
 
 namespace {
+bool shades(const std::string& name) { return name == "glEnd" || name == "glDrawPixels" || name == "glCopyPixels"; }
+std::string with_newline(std::string s) {
+  if (!s.empty() && s.back() != '\n') s += '\n';
+  return s;
+}
+}  // namespace
+
+std::string explain_pixel_transfer(Context& ctx, const PassInfo& pass) {
+  if (pass.step.name != "glDrawPixels" && pass.step.name != "glCopyPixels") return "";
+  // DrawPixels and CopyPixels of colour run the 2D transfer plan (GL121 §3.6.3).
+  const auto z = ctx.pixel_zoom();
+  const auto& rp = ctx.raster_pos();
+  std::string s = cat("raster position (", format_number(rp.x), ", ", format_number(rp.y), ")", rp.valid ? "" : " invalid: nothing drawn",
+                      ", zoom ", format_number(z[0]), " x ", format_number(z[1]), "\n");
+  return s + with_newline(ctx.transfer_plan(pixel::ImageDims::TwoD).str(ctx.transfer_inputs()));
+}
+
+std::string explain_shading_pass(Context& ctx, const PassInfo& pass) {
+  if (!shades(pass.step.name)) return "";
+  return with_newline(ctx.explain_shading());
+}
+
+std::string explain_fragment_pass(Context& ctx, const PassInfo& pass) {
+  if (pass.step.name == "glClear") return "";
+  return with_newline(ctx.explain_fragment_ops());
+}
+
+std::string explain_combiners_pass(Context& ctx, const PassInfo& pass) {
+  if (!shades(pass.step.name) || !ctx.isEnabled(gl::REGISTER_COMBINERS_NV)) return "";
+  return with_newline(ctx.describe_combiners());
+}
+
+namespace {
 ExplainerRegistry build() {
   ExplainerRegistry r;
   r.add("framebuffer", explain_writes);
   // ==== [issue 3] pixel transfer plan ====
+  r.add("pixel transfer", explain_pixel_transfer);
 
   // ==== [issue 4a] rasterization, texturing, texture environment ====
+  r.add("shading", explain_shading_pass);
 
   // ==== [issue 4b] per-fragment operations (blend equations) ====
+  r.add("fragment", explain_fragment_pass);
 
   // ==== [issue 5] register combiners (stage equations) ====
+  r.add("combiners", explain_combiners_pass);
 
   return r;
 }

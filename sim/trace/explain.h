@@ -19,7 +19,9 @@ struct PassInfo {
   const Step& step;  // the command that made the pass
 };
 
-using Explainer = std::function<std::string(const Context&, const PassInfo&)>;
+// The Context is not const: the areas' plan accessors build and cache their plans
+// (an explainer changes no GL state and raises no GL error).
+using Explainer = std::function<std::string(Context&, const PassInfo&)>;
 
 struct ExplainerDef {
   std::string area;  // "core", "pixel transfer", "combiners", ...
@@ -40,5 +42,12 @@ const ExplainerRegistry& explainers();
 
 // The core explainer: framebuffer writes (masks, scissor, the cleared buffers).
 std::string explain_writes(const Context& ctx, const PassInfo& pass);
+// The areas' explainers: the pixel transfer plan of DrawPixels/CopyPixels, the
+// shading plan of draws, the per-fragment plan, the register-combiner equations
+// (when REGISTER_COMBINERS_NV is enabled).
+std::string explain_pixel_transfer(Context& ctx, const PassInfo& pass);
+std::string explain_shading_pass(Context& ctx, const PassInfo& pass);
+std::string explain_fragment_pass(Context& ctx, const PassInfo& pass);
+std::string explain_combiners_pass(Context& ctx, const PassInfo& pass);
 
 }  // namespace ffsim::trace
