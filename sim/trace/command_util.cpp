@@ -99,7 +99,7 @@ Image client_image_for(int width, int height, GLenum format, GLenum type) {
 }
 
 std::optional<ArgProblem> check_vector_count(const std::vector<ArgValue>& a, std::size_t pname, std::size_t values,
-                                             std::initializer_list<GLenum> four, const std::string& fn) {
+                                             const std::vector<GLenum>& four, const std::string& fn) {
   const GLenum p = static_cast<GLenum>(a.at(pname).i);
   const std::size_t want = std::find(four.begin(), four.end(), p) != four.end() ? 4 : 1;
   const std::size_t got = a.at(values).list.size();

@@ -52,7 +52,7 @@ Image client_image_for(int width, int height, GLenum format, GLenum type);
 // for the pnames in `four`, 1 otherwise ("glTexEnvfv GL_TEXTURE_ENV_COLOR takes 4
 // values, got 3").
 std::optional<ArgProblem> check_vector_count(const std::vector<ArgValue>& a, std::size_t pname, std::size_t values,
-                                             std::initializer_list<GLenum> four, const std::string& fn);
+                                             const std::vector<GLenum>& four, const std::string& fn);
 // Load-time check that every value of a Numbers argument is an integer in [lo, hi].
 std::optional<ArgProblem> check_integers(const std::vector<ArgValue>& a, std::size_t values, double lo, double hi,
                                          const std::string& what);

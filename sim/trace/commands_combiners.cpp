@@ -22,7 +22,7 @@ void register_combiners_commands(CommandTable& t) {
   const std::vector<GLenum> usages = {gl::RGB, gl::ALPHA, gl::BLUE};
   const std::vector<GLenum> scales = {gl::NONE, gl::SCALE_BY_TWO_NV, gl::SCALE_BY_FOUR_NV, gl::SCALE_BY_ONE_HALF_NV};
   const std::vector<GLenum> biases = {gl::NONE, gl::BIAS_BY_NEGATIVE_ONE_HALF_NV};
-  const std::initializer_list<GLenum> colors = {gl::CONSTANT_COLOR0_NV, gl::CONSTANT_COLOR1_NV};
+  const std::vector<GLenum> colors = {gl::CONSTANT_COLOR0_NV, gl::CONSTANT_COLOR1_NV};
 
   // glCombinerParameter*: CONSTANT_COLOR0_NV / CONSTANT_COLOR1_NV take 4 values,
   // NUM_GENERAL_COMBINERS_NV and COLOR_SUM_CLAMP_NV one.
