@@ -87,7 +87,7 @@ const void* unpack_source(const Context& c, const Args& a, std::size_t image, in
     throw TraceError(a.where_at(image),
                      cat(fn, " reads ", std::to_string(need), " bytes of image `", a[image].text, "` under the current unpack modes,"
                          " but it holds ", std::to_string(have), " (", std::to_string(im.width), "x", std::to_string(im.height),
-                         "); rows are tightly packed: glPixelStorei GL_UNPACK_ALIGNMENT 1 reads them so"));
+                         " with tightly packed rows; GL_UNPACK_ALIGNMENT 1 reads such rows)"));
   return image_data(im);
 }
 

@@ -129,7 +129,7 @@ void register_pixels_commands(CommandTable& t) {
           if (need > have)
             throw TraceError(a.where_at(6), cat("glReadPixels writes ", std::to_string(need), " bytes into image `", a[6].text,
                                                 "` under the current pack modes, but it holds ", std::to_string(have),
-                                                "; rows are tightly packed: glPixelStorei GL_PACK_ALIGNMENT 1 writes them so"));
+                                                " (tightly packed rows; GL_PACK_ALIGNMENT 1 writes such rows)"));
           void* data = im.type == SampleType::U8    ? static_cast<void*>(im.u8.data())
                        : im.type == SampleType::U16 ? static_cast<void*>(im.u16.data())
                                                     : static_cast<void*>(im.f32.data());
