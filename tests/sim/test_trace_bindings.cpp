@@ -405,3 +405,26 @@ TEST_CASE("trace bindings: --explain prints each area's plan for the passes it c
   CHECK(p4.find("  pixel transfer: raster position (0, 0), zoom 1 x 1") != std::string::npos);
   CHECK(p4.find("  pixel transfer: identity") != std::string::npos);
 }
+
+TEST_CASE("trace bindings: expect enabled follows glEnable and glDisable of every area's capabilities") {
+  const char* caps[] = {"GL_COLOR_TABLE", "GL_POST_CONVOLUTION_COLOR_TABLE", "GL_POST_COLOR_MATRIX_COLOR_TABLE",
+                        "GL_CONVOLUTION_1D", "GL_CONVOLUTION_2D", "GL_SEPARABLE_2D", "GL_TEXTURE_1D", "GL_TEXTURE_2D",
+                        "GL_ALPHA_TEST", "GL_STENCIL_TEST", "GL_DEPTH_TEST", "GL_BLEND", "GL_COLOR_LOGIC_OP",
+                        "GL_REGISTER_COMBINERS_NV", "GL_PER_STAGE_CONSTANTS_NV"};
+  for (const char* cap : caps) {
+    CAPTURE(cap);
+    const std::string c(cap);
+    const Ran x = run(V + "expect enabled " + c + " 0\nglEnable " + c + "\nexpect enabled " + c + " 1\nglDisable " + c +
+                          "\nexpect enabled " + c + " 0\n",
+                      "t.trace");
+    CHECK(x.r.ok);
+    CHECK(x.r.gl_errors.empty());
+    CHECK(x.r.expect_failures.empty());
+  }
+  // Texture enables belong to the active unit.
+  const Ran u = run(V + "glActiveTexture GL_TEXTURE1\nglEnable GL_TEXTURE_2D\nexpect enabled GL_TEXTURE_2D 1\n"
+                        "glActiveTexture GL_TEXTURE0\nexpect enabled GL_TEXTURE_2D 0\n",
+                    "t.trace");
+  CHECK(u.r.expect_failures.empty());
+  CHECK(u.r.gl_errors.empty());
+}
