@@ -53,6 +53,12 @@ std::string explain_pixel_transfer(Context& ctx, const PassInfo& pass) {
   const auto& rp = ctx.raster_pos();
   std::string s = cat("raster position (", format_number(rp.x), ", ", format_number(rp.y), ")", rp.valid ? "" : " invalid: nothing drawn",
                       ", zoom ", format_number(z[0]), " x ", format_number(z[1]), "\n");
+  // Stencil and depth rectangles do not go through the colour transfer plan.
+  const auto& a = pass.step.args;
+  const GLenum what = pass.step.name == "glCopyPixels" ? (a.size() > 4 ? static_cast<GLenum>(a[4].i) : gl::COLOR)
+                                                       : (a.size() > 2 ? static_cast<GLenum>(a[2].i) : gl::RGBA);
+  if (what == gl::STENCIL || what == gl::STENCIL_INDEX) return s + "stencil indices: no colour transfer\n";
+  if (what == gl::DEPTH || what == gl::DEPTH_COMPONENT) return s + "depth values: no colour transfer\n";
   return s + with_newline(ctx.transfer_plan(pixel::ImageDims::TwoD).str(ctx.transfer_inputs()));
 }
 

@@ -404,6 +404,8 @@ TEST_CASE("trace bindings: --explain prints each area's plan for the passes it c
   CHECK(p3.find("  framebuffer: clear color") != std::string::npos);
   CHECK(p4.find("  pixel transfer: raster position (0, 0), zoom 1 x 1") != std::string::npos);
   CHECK(p4.find("  pixel transfer: identity") != std::string::npos);
+  const Ran st = run(V + "framebuffer 2 2\nglCopyPixels 0 0 1 1 GL_STENCIL\n", "t.trace", ro);
+  CHECK(st.out.find("  pixel transfer: stencil indices: no colour transfer") != std::string::npos);
 }
 
 TEST_CASE("trace bindings: expect enabled follows glEnable and glDisable of every area's capabilities") {
