@@ -212,7 +212,7 @@ TEST_CASE("trace bindings: every command of the four areas appears in docs/trace
     const std::string b = base_name(c);
     // f/d pairs are documented as glVertex2f/d.
     const bool fd = (b.back() == 'f' || b.back() == 'd') && doc.find(b.substr(0, b.size() - 1) + "f/d") != std::string::npos;
-    CHECK((doc.find("| " + b + " |") != std::string::npos || fd));
+    CHECK((doc.find(std::string("| ") + b + " |") != std::string::npos || fd));
   }
 }
 
