@@ -74,7 +74,8 @@ void register_pixels_commands(CommandTable& t) {
           c.texImage1D(a.enum_at(0), i32(a, 1), a.enum_at(2), i32(a, 3), i32(a, 4), a.enum_at(5), a.enum_at(6),
                        unpack_source(c, a, 7, i32(a, 3), 1, a.enum_at(5), a.enum_at(6), "glTexImage1D"));
         })
-      .checked([](const std::vector<ArgValue>& a) { return check_client_image(a, 5, 6, 7, "glTexImage1D"); });
+      .checked([](const std::vector<ArgValue>& a) { return check_client_image(a, 5, 6, 7, "glTexImage1D"); })
+      .explain_after();
   t.add("glTexImage2D",
         {Enum("target"), Int("level"), Enum("internalformat"), Int("width"), Int("height"), Int("border"), Enum("format"),
          Enum("type"), ClientImage("pixels")},
@@ -82,14 +83,16 @@ void register_pixels_commands(CommandTable& t) {
           c.texImage2D(a.enum_at(0), i32(a, 1), a.enum_at(2), i32(a, 3), i32(a, 4), i32(a, 5), a.enum_at(6), a.enum_at(7),
                        unpack_source(c, a, 8, i32(a, 3), i32(a, 4), a.enum_at(6), a.enum_at(7), "glTexImage2D"));
         })
-      .checked([](const std::vector<ArgValue>& a) { return check_client_image(a, 6, 7, 8, "glTexImage2D"); });
+      .checked([](const std::vector<ArgValue>& a) { return check_client_image(a, 6, 7, 8, "glTexImage2D"); })
+      .explain_after();
   t.add("glTexSubImage1D",
         {Enum("target"), Int("level"), Int("xoffset"), Int("width"), Enum("format"), Enum("type"), ClientImage("pixels")},
         [](Context& c, const Args& a) {
           c.texSubImage1D(a.enum_at(0), i32(a, 1), i32(a, 2), i32(a, 3), a.enum_at(4), a.enum_at(5),
                           unpack_source(c, a, 6, i32(a, 3), 1, a.enum_at(4), a.enum_at(5), "glTexSubImage1D"));
         })
-      .checked([](const std::vector<ArgValue>& a) { return check_client_image(a, 4, 5, 6, "glTexSubImage1D"); });
+      .checked([](const std::vector<ArgValue>& a) { return check_client_image(a, 4, 5, 6, "glTexSubImage1D"); })
+      .explain_after();
   t.add("glTexSubImage2D",
         {Enum("target"), Int("level"), Int("xoffset"), Int("yoffset"), Int("width"), Int("height"), Enum("format"),
          Enum("type"), ClientImage("pixels")},
@@ -97,16 +100,21 @@ void register_pixels_commands(CommandTable& t) {
           c.texSubImage2D(a.enum_at(0), i32(a, 1), i32(a, 2), i32(a, 3), i32(a, 4), i32(a, 5), a.enum_at(6), a.enum_at(7),
                           unpack_source(c, a, 8, i32(a, 4), i32(a, 5), a.enum_at(6), a.enum_at(7), "glTexSubImage2D"));
         })
-      .checked([](const std::vector<ArgValue>& a) { return check_client_image(a, 6, 7, 8, "glTexSubImage2D"); });
+      .checked([](const std::vector<ArgValue>& a) { return check_client_image(a, 6, 7, 8, "glTexSubImage2D"); })
+      .explain_after();
   // §3.8.2 copies from the colour buffer into textures (not passes: the framebuffer is only read).
   t.bind("glCopyTexImage1D", &Context::copyTexImage1D,
-         {Enum("target"), Int("level"), Enum("internalformat"), Int("x"), Int("y"), Int("width"), Int("border")});
+         {Enum("target"), Int("level"), Enum("internalformat"), Int("x"), Int("y"), Int("width"), Int("border")})
+      .explain_after();
   t.bind("glCopyTexImage2D", &Context::copyTexImage2D,
-         {Enum("target"), Int("level"), Enum("internalformat"), Int("x"), Int("y"), Int("width"), Int("height"), Int("border")});
+         {Enum("target"), Int("level"), Enum("internalformat"), Int("x"), Int("y"), Int("width"), Int("height"), Int("border")})
+      .explain_after();
   t.bind("glCopyTexSubImage1D", &Context::copyTexSubImage1D,
-         {Enum("target"), Int("level"), Int("xoffset"), Int("x"), Int("y"), Int("width")});
+         {Enum("target"), Int("level"), Int("xoffset"), Int("x"), Int("y"), Int("width")})
+      .explain_after();
   t.bind("glCopyTexSubImage2D", &Context::copyTexSubImage2D,
-         {Enum("target"), Int("level"), Int("xoffset"), Int("yoffset"), Int("x"), Int("y"), Int("width"), Int("height")});
+         {Enum("target"), Int("level"), Int("xoffset"), Int("yoffset"), Int("x"), Int("y"), Int("width"), Int("height")})
+      .explain_after();
 
   // §3.6.4, §4.3.2, §4.3.3 pixel rectangles.
   t.add("glDrawPixels", {Int("width"), Int("height"), Enum("format"), Enum("type"), ClientImage("pixels")},

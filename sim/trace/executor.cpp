@@ -91,6 +91,7 @@ class Runner {
       case StepKind::Call: {
         s.def->call(ctx, Args(s.args, &memory_));
         if (s.is_pass()) after_pass(ctx, s);
+        else if (o_.explain && s.def->explained) explain_call(ctx, s);
         break;
       }
       case StepKind::Dump: {
@@ -179,19 +180,7 @@ class Runner {
     auto records = ctx.probe().take();
     if (o_.explain || (o_.probe && !records.empty())) {
       out_ << "pass " << r_.passes << ": " << s.name << " at " << s.where.str() << "\n";
-      if (o_.explain) {
-        const PassInfo info{r_.passes, s};
-        for (const auto& e : explainers().all()) {
-          const std::string text = e.explain(ctx, info);
-          std::size_t pos = 0;
-          while (pos < text.size()) {
-            std::size_t nl = text.find('\n', pos);
-            if (nl == std::string::npos) nl = text.size();
-            out_ << "  " << e.area << ": " << text.substr(pos, nl - pos) << "\n";
-            pos = nl + 1;
-          }
-        }
-      }
+      if (o_.explain) print_explainers(ctx, PassInfo{r_.passes, s, true});
       for (const auto& rec : records)
         out_ << "  probe (" << o_.probe->first << ", " << o_.probe->second << ") " << rec.stage << ": " << rec.text << "\n";
     }
@@ -204,6 +193,25 @@ class Runner {
       write(prefix + s.name + "-alpha" + ext, alpha_image(fb));
       if (fb.has_stencil()) write(prefix + s.name + "-stencil.png", stencil_image(fb));
     }
+  }
+
+  void print_explainers(Context& ctx, const PassInfo& info) {
+    for (const auto& e : explainers().all()) {
+      const std::string text = e.explain(ctx, info);
+      std::size_t pos = 0;
+      while (pos < text.size()) {
+        std::size_t nl = text.find('\n', pos);
+        if (nl == std::string::npos) nl = text.size();
+        out_ << "  " << e.area << ": " << text.substr(pos, nl - pos) << "\n";
+        pos = nl + 1;
+      }
+    }
+  }
+
+  // A call that is not a pass but says what it did (a texture upload's transfer plan).
+  void explain_call(Context& ctx, const Step& s) {
+    out_ << "call: " << s.name << " at " << s.where.str() << " (not a pass)\n";
+    print_explainers(ctx, PassInfo{r_.passes, s, false});
   }
 
   void write(const std::string& rel, const Image& im) {

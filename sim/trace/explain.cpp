@@ -8,6 +8,7 @@
 namespace ffsim::trace {
 
 std::string explain_writes(const Context& ctx, const PassInfo& pass) {
+  if (!pass.is_pass) return "";
   std::string s;
   if (pass.step.name == "glClear" && !pass.step.args.empty()) {
     const auto mask = static_cast<std::uint32_t>(pass.step.args[0].i);
@@ -47,7 +48,13 @@ std::string with_newline(std::string s) {
 }  // namespace
 
 std::string explain_pixel_transfer(Context& ctx, const PassInfo& pass) {
-  if (pass.step.name != "glDrawPixels" && pass.step.name != "glCopyPixels") return "";
+  const std::string& n = pass.step.name;
+  if (n.rfind("glTex", 0) == 0 || n.rfind("glCopyTex", 0) == 0) {
+    // Texture images run the transfer plan of their dimensionality (GL121 §3.8.1).
+    const bool one_d = n.find("1D") != std::string::npos;
+    return with_newline(ctx.transfer_plan(one_d ? pixel::ImageDims::OneD : pixel::ImageDims::TwoD).str(ctx.transfer_inputs()));
+  }
+  if (n != "glDrawPixels" && n != "glCopyPixels") return "";
   // DrawPixels and CopyPixels of colour run the 2D transfer plan (GL121 §3.6.3).
   const auto z = ctx.pixel_zoom();
   const auto& rp = ctx.raster_pos();
@@ -63,17 +70,17 @@ std::string explain_pixel_transfer(Context& ctx, const PassInfo& pass) {
 }
 
 std::string explain_shading_pass(Context& ctx, const PassInfo& pass) {
-  if (!shades(pass.step.name)) return "";
+  if (!pass.is_pass || !shades(pass.step.name)) return "";
   return with_newline(ctx.explain_shading());
 }
 
 std::string explain_fragment_pass(Context& ctx, const PassInfo& pass) {
-  if (pass.step.name == "glClear") return "";
+  if (!pass.is_pass || pass.step.name == "glClear") return "";
   return with_newline(ctx.explain_fragment_ops());
 }
 
 std::string explain_combiners_pass(Context& ctx, const PassInfo& pass) {
-  if (!shades(pass.step.name) || !ctx.isEnabled(gl::REGISTER_COMBINERS_NV)) return "";
+  if (!pass.is_pass || !shades(pass.step.name) || !ctx.isEnabled(gl::REGISTER_COMBINERS_NV)) return "";
   return with_newline(ctx.describe_combiners());
 }
 

@@ -15,8 +15,9 @@
 namespace ffsim::trace {
 
 struct PassInfo {
-  int index = 0;     // 1-based pass number
+  int index = 0;     // 1-based pass number (of the last pass, for a call that is not one)
   const Step& step;  // the command that made the pass
+  bool is_pass = true;  // false: a call marked explain_after (a texture upload), not a pass
 };
 
 // The Context is not const: the areas' plan accessors build and cache their plans

@@ -406,6 +406,15 @@ TEST_CASE("trace bindings: --explain prints each area's plan for the passes it c
   CHECK(p4.find("  pixel transfer: identity") != std::string::npos);
   const Ran st = run(V + "framebuffer 2 2\nglCopyPixels 0 0 1 1 GL_STENCIL\n", "t.trace", ro);
   CHECK(st.out.find("  pixel transfer: stencil indices: no colour transfer") != std::string::npos);
+  // Texture uploads are not passes; --explain reports their transfer plan after the call.
+  const Ran up = run(V + "framebuffer 2 2\ntable src 2 x 0 0 1\nglPixelTransferf GL_RED_SCALE 0.5\n"
+                         "glTexImage2D GL_TEXTURE_2D 0 GL_RGBA 2 1 0 GL_RGBA GL_FLOAT src\n",
+                     "t.trace", ro);
+  CHECK(up.r.passes == 0);
+  CHECK(up.out.rfind("call: glTexImage2D at t.trace:5:1 (not a pass)\n  pixel transfer: ", 0) == 0);
+  CHECK(up.out.find("identity") == std::string::npos);  // the scale is a stage of the plan
+  CHECK(up.out.find("  framebuffer:") == std::string::npos);
+  CHECK(up.out.find("  fragment:") == std::string::npos);
 }
 
 TEST_CASE("trace bindings: expect enabled follows glEnable and glDisable of every area's capabilities") {
