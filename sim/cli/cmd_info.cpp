@@ -101,6 +101,7 @@ Subcommand info_command() {
           break;
         case trace::StepKind::ExpectHash:
         case trace::StepKind::ExpectPixel:
+        case trace::StepKind::ExpectImage:
         case trace::StepKind::ExpectError:
         case trace::StepKind::ExpectEnabled:
         {

@@ -136,6 +136,18 @@ class Runner {
                       std::string(" (tol ") + format_number(s.tol) + ")");
         break;
       }
+      case StepKind::ExpectImage: {
+        const std::vector<ArgValue> one{s.image};
+        const Image& im = Args(one, &memory_).image_at(0);
+        std::vector<double> got;
+        for (int c = 0; c < im.channels; ++c) got.push_back(im.value(s.x, s.y, c));
+        bool ok = true;
+        for (std::size_t c = 0; c < got.size(); ++c) ok = ok && std::fabs(got[c] - s.values[c]) <= s.tol;
+        if (!ok)
+          fail(s, std::string("expect image ") + s.image.text + " " + std::to_string(s.x) + " " + std::to_string(s.y) + ": got " +
+                      list(got) + ", expected " + list(s.values) + std::string(" (tol ") + format_number(s.tol) + ")");
+        break;
+      }
       case StepKind::ExpectEnabled: {
         const bool on = ctx.isEnabled(s.error);  // glIsEnabled
         if (on != s.enabled)

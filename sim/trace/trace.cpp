@@ -514,7 +514,7 @@ class Loader {
   }
 
   void expect(const Line& l) {
-    if (l.tok.size() < 2) throw TraceError(l.end(), "`expect` needs what to check: hash, pixel, error or enabled", l.text);
+    if (l.tok.size() < 2) throw TraceError(l.end(), "`expect` needs what to check: hash, pixel, image, error or enabled", l.text);
     const std::string& what = l.tok[1].text;
     if (what == "hash") {
       expect_count(l, 3, 3, "expect hash color|alpha|stencil|depth HEX");
@@ -552,6 +552,42 @@ class Loader {
         if (s.tol < 0) fail(l, k + 1, std::string("the tolerance must not be negative, got ") + format_number(s.tol));
       }
       prog_.steps.push_back(std::move(s));
+    } else if (what == "image") {
+      if (l.tok.size() < 6) throw TraceError(l.end(), "`expect image` needs NAME X Y VALUES...: expect image NAME X Y V... [tol T]", l.text);
+      Step s = step(l, StepKind::ExpectImage);
+      auto it = resources_.find(l.tok[2].text);
+      if (it == resources_.end())
+        fail(l, 2, std::string("unknown image `") + l.tok[2].text + "` (define it with image, generate, table or glReadPixels)");
+      const Resource& r = prog_.resources[it->second];
+      s.image.kind = ArgKind::Image;
+      s.image.text = r.name;
+      s.image.where = l.at(2);
+      s.image.image = r.image;
+      s.image.client_memory = r.client_memory;
+      const Image& im = *r.image;
+      if (im.width < 1 || im.height < 1) fail(l, 2, std::string("image `") + r.name + "` has no pixels");
+      s.x = static_cast<int>(eval_int(l, 3, "x", 0, im.width - 1));
+      s.y = static_cast<int>(eval_int(l, 4, "y", 0, im.height - 1));
+      const std::size_t want = static_cast<std::size_t>(im.channels);
+      std::size_t k = 5;
+      for (; k < l.tok.size() && l.tok[k].text != "tol"; ++k) {
+        if (s.values.size() == want) fail(l, k, cat("too many values: image `", r.name, "` has ", std::to_string(want), " channel", want > 1 ? "s" : ""));
+        s.values.push_back(eval(l, k));
+      }
+      if (s.values.size() < want)
+        throw TraceError(k < l.tok.size() ? l.at(k) : l.end(),
+                         cat("expected ", std::to_string(want), " value", want > 1 ? "s" : "", " for image `", r.name, "`, got ",
+                             std::to_string(s.values.size())),
+                         l.text);
+      if (k < l.tok.size()) {
+        if (k + 2 != l.tok.size()) {
+          if (k + 1 == l.tok.size()) throw TraceError(l.end(), "`tol` needs a value", l.text);
+          fail(l, k + 2, "nothing may follow `tol T`");
+        }
+        s.tol = eval(l, k + 1);
+        if (s.tol < 0) fail(l, k + 1, std::string("the tolerance must not be negative, got ") + format_number(s.tol));
+      }
+      prog_.steps.push_back(std::move(s));
     } else if (what == "error") {
       expect_count(l, 2, 2, "expect error GL_NO_ERROR|GL_INVALID_ENUM|...");
       Step s = step(l, StepKind::ExpectError);
@@ -564,7 +600,7 @@ class Loader {
       s.enabled = boolean(l, 3, "the state");
       prog_.steps.push_back(std::move(s));
     } else {
-      fail(l, 1, std::string("expected hash, pixel, error or enabled after `expect`, got `") + what + "`");
+      fail(l, 1, std::string("expected hash, pixel, image, error or enabled after `expect`, got `") + what + "`");
     }
   }
 

@@ -28,7 +28,7 @@ inline constexpr long long kMaxTraceLines = 1000000;         // all files togeth
 inline constexpr std::uintmax_t kMaxTraceTotalBytes = 64u << 20;  // all files together, includes expanded
 inline constexpr int kMaxTableWidth = 65536;
 
-enum class StepKind { Call, Dump, DumpImage, Hash, ExpectHash, ExpectPixel, ExpectError, ExpectEnabled };
+enum class StepKind { Call, Dump, DumpImage, Hash, ExpectHash, ExpectPixel, ExpectImage, ExpectError, ExpectEnabled };
 
 struct Step {
   StepKind kind = StepKind::Call;
@@ -39,11 +39,11 @@ struct Step {
   std::vector<ArgValue> args;       // Call
   BufferKind buffer = BufferKind::Color;  // Dump, Hash, ExpectHash, ExpectPixel
   std::string file;                       // Dump, DumpImage: path relative to the output directory
-  ArgValue image;                         // DumpImage: the client image (text = its name)
+  ArgValue image;                         // DumpImage, ExpectImage: the client image (text = its name)
   std::uint64_t hash = 0;                 // ExpectHash
-  int x = 0, y = 0;                       // ExpectPixel
-  std::vector<double> values;             // ExpectPixel: 4 for color, 1 otherwise
-  double tol = 0;                         // ExpectPixel
+  int x = 0, y = 0;                       // ExpectPixel, ExpectImage
+  std::vector<double> values;             // ExpectPixel: 4 for color, 1 otherwise; ExpectImage: one per channel
+  double tol = 0;                         // ExpectPixel, ExpectImage
   GLenum error = gl::NO_ERROR;            // ExpectError; ExpectEnabled: the capability
   bool enabled = false;                   // ExpectEnabled
   bool is_pass() const { return kind == StepKind::Call && def && def->is_pass; }

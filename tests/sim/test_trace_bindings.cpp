@@ -315,6 +315,16 @@ TEST_CASE("trace bindings: glReadPixels fills client memory that glDrawPixels an
   CHECK(im.type == SampleType::U8);
   CHECK(im.u8[im.index(3, 3, 0)] == 255);
   CHECK(im.u8[im.index(3, 3, 2)] == 0);
+  // expect image checks client memory as it is when the line runs.
+  const Ran e = run(V + "framebuffer 2 1\nglClearColor 0 0.2 1 0.2\nglClear GL_COLOR_BUFFER_BIT\n"
+                        "glReadPixels 0 0 2 1 GL_LUMINANCE_ALPHA GL_UNSIGNED_BYTE la\n"
+                        "expect image la 1 0 1 51/255\n"   // L = R + G + B = 1.2 clamped to 1 (GL121 §4.3.2), A = 51
+                        "glClearColor 0 0 0 0\nglClear GL_COLOR_BUFFER_BIT\nexpect image la 1 0 0 0\n",
+                    "t.trace");
+  REQUIRE(e.r.expect_failures.size() == 1);
+  CHECK(e.r.expect_failures[0] == "t.trace:9:1: expect image la 1 0: got (1, 0.2), expected (0, 0) (tol 0)");
+  CHECK(load_error(V + "table t 2 x\nexpect image t 2 0 1\n") == "t.trace:3:16: x must be in [0, 1], got 2");
+  CHECK(load_error(V + "table t 2 x\nexpect image t 1 0 1 1\n") == "t.trace:3:22: too many values: image `t` has 1 channel");
 }
 
 TEST_CASE("trace bindings: an image too small for the unpack modes stops the replay at the call") {
