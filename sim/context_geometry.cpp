@@ -35,7 +35,9 @@ void Context::begin(GLenum mode) {
     return;
   }
   if (mode == gl::POINTS || mode == gl::LINES || mode == gl::LINE_LOOP || mode == gl::LINE_STRIP) {
-    error(gl::INVALID_ENUM, "glBegin", gl::enum_name(mode) + ": points and lines are not modelled by ffsim");
+    // Values 0..3 are shared with GL_FALSE/GL_TRUE/GL_ONE..., so name them here.
+    static const char* const kModes[] = {"GL_POINTS", "GL_LINES", "GL_LINE_LOOP", "GL_LINE_STRIP"};
+    error(gl::INVALID_ENUM, "glBegin", std::string(kModes[mode]) + ": points and lines are not modelled by ffsim");
     return;
   }
   if (!drawable_mode(mode)) {

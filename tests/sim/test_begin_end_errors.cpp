@@ -47,3 +47,15 @@ TEST_CASE("begin/end: state commands of every area raise INVALID_OPERATION and c
     CHECK(call.unchanged(ctx));
   }
 }
+
+TEST_CASE("begin/end: points and lines are refused by name, not by a token sharing their value") {
+  // GL_POINTS = 0 = GL_FALSE and GL_LINES = 1 = GL_TRUE: the message must name the mode.
+  Context ctx(profile_named("geforce256"), 4, 4);
+  std::vector<std::string> seen;
+  ctx.set_error_callback([&](const GLErrorEvent& e) { seen.push_back(e.str()); });
+  ctx.begin(gl::POINTS);
+  ctx.begin(gl::LINE_STRIP);
+  REQUIRE(seen.size() == 2);
+  CHECK(seen[0] == "glBegin: GL_INVALID_ENUM: GL_POINTS: points and lines are not modelled by ffsim");
+  CHECK(seen[1] == "glBegin: GL_INVALID_ENUM: GL_LINE_STRIP: points and lines are not modelled by ffsim");
+}
