@@ -20,6 +20,7 @@
 #include <map>
 
 #include "pipeline/combiners/combiner_plan.h"
+#include "pipeline/combiners/register_combiners.h"
 #include "pipeline/fragment/fragment_plan.h"
 #include "pipeline/fragment/fragment_span.h"
 #include "pipeline/geometry/clip.h"
@@ -280,9 +281,13 @@ class Context {
   // consume the same texels and colours (RC §3.8.11).
   Rgba shade_fragment(const ShadingState& st, const ShadingPlan& plan, const Rgba& primary, const Rgba& secondary,
                       const UnitTexCoords& tc);
+  // --probe: while non-null, shade_fragment appends what it computed for the
+  // current fragment (filtered texels, combiner registers) to this text.
+  std::string* shade_probe_ = nullptr;
   // The register-combiner colour stage for one fragment (sim/draw.cpp).
   Rgba combine_fragment(const ShadingState& st, const ShadingPlan& plan, const Rgba& primary, const Rgba& secondary,
                         const UnitTexels& texels);
+  void probe_registers(const combiners::RegisterTrace& trace);
   // Whether fragments need shade_fragment at all (otherwise the primary colour is
   // the fragment colour). Register combiners make this true whenever enabled.
   bool shading_active(const ShadingPlan& plan) const {

@@ -56,7 +56,7 @@ void Context::write_fragments(FragmentSpan& span) {
   std::string before;
   for (int i = 0; i < span.count && probed < 0; ++i)
     if (probe_.hits(span.x0 + i, span.y)) probed = i;
-  if (probed >= 0) before = describe_color(fb_, span.x0 + probed, span.y);
+  if (probed >= 0) before = probe_describe_buffers(span.x0 + probed, span.y);
   const bool fl = fb_.format().float_color();
   std::string fragment;
   if (probed >= 0)
@@ -64,8 +64,10 @@ void Context::write_fragments(FragmentSpan& span) {
                   : describe_codes(&span.codes[4 * static_cast<std::size_t>(probed)], fb_.format().color_bits);
   run_fragment_plan(*fragment_current_plan_, fragment_current_constants_, span, b, fb_.width());
   if (probed >= 0)
-    probe_.record("write_fragments", std::string("fragment ") + fragment + ", framebuffer " + before + " -> " +
-                                         describe_color(fb_, span.x0 + probed, span.y));
+    probe_.record("write_fragments", std::string("fragment ") + fragment + (span.depth.empty() ? std::string()
+                                         : std::string(" depth ") + std::to_string(span.depth[static_cast<std::size_t>(probed)])) +
+                                         "\n    before: " + before + "\n    after:  " +
+                                         probe_describe_buffers(span.x0 + probed, span.y));
 }
 
 }  // namespace ffsim

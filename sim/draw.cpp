@@ -14,7 +14,9 @@
 #include <cmath>
 
 #include "pipeline/combiners/register_combiners.h"
+#include "pipeline/number/snorm.h"
 #include "pipeline/number/unorm.h"
+#include "sim/probe.h"
 #include "pipeline/raster/triangle.h"
 #include "sim/context.h"
 
@@ -84,8 +86,44 @@ Rgba Context::shade_fragment(const ShadingState& st, const ShadingPlan& plan, co
                              const Rgba& secondary, const UnitTexCoords& tc) {
   UnitTexels texels{};
   fetch_texels(st, plan, tc, texels);  // step 1
+  if (shade_probe_)
+    for (int u = 0; u < kShadeUnits; ++u) {
+      if (!plan.sample[u]) continue;
+      const Texel& t = texels[u];
+      std::array<std::uint16_t, 4> k{};
+      for (int c = 0; c < 4; ++c) k[c] = static_cast<std::uint16_t>(t.code[c]);
+      *shade_probe_ += "\n    unit " + std::to_string(u) + ": s,t = " + std::to_string(tc[u].s) + ", " + std::to_string(tc[u].t) +
+                       " lambda " + std::to_string(tc[u].lambda) + ", filtered texel (register layout) " +
+                       (st.color.fixed() ? describe_codes(k.data(), t.bits) : describe_values(t.value.data()));
+    }
   if (!combiners_.enabled) return texture_environments(st, plan, primary, secondary, texels);  // step 2
   return combine_fragment(st, plan, primary, secondary, texels);
+}
+
+static std::string describe_rgba(const Rgba& c, const ColorFormat& fmt) {
+  if (!fmt.fixed()) return describe_values(c.value.data());
+  std::array<std::uint16_t, 4> k{};
+  for (int i = 0; i < 4; ++i) k[i] = static_cast<std::uint16_t>(c.code[i]);
+  return describe_codes(k.data(), fmt.bits);
+}
+
+void Context::probe_registers(const combiners::RegisterTrace& trace) {
+  if (!shade_probe_) return;
+  // The registers general stages write (spare0, spare1) and the colours, after
+  // each stage, as real values.
+  for (std::size_t k = 0; k < trace.after_stage.size(); ++k)
+    for (int r : {combiners::kSpare0, combiners::kSpare1, combiners::kPrimaryColor, combiners::kSecondaryColor}) {
+      const auto& v = trace.after_stage[k][static_cast<std::size_t>(r)];
+      std::string codes;
+      if (profile_.is_fixed()) {  // the register codes c (value c/M), recovered exactly from c/M
+        const double M = snorm_max(profile_.combiner_bits);
+        codes = "codes (";
+        for (int c = 0; c < 4; ++c) codes += (c ? ", " : "") + std::to_string(std::lround(v[static_cast<std::size_t>(c)] * M));
+        codes += ")/" + std::to_string(static_cast<int>(M)) + " = ";
+      }
+      *shade_probe_ += "\n    after stage " + std::to_string(k) + ": " + combiners::register_short_name(r) + " = " + codes +
+                       describe_values(v.data());
+    }
 }
 
 Rgba Context::combine_fragment(const ShadingState& st, const ShadingPlan& plan, const Rgba& primary,
@@ -117,7 +155,9 @@ Rgba Context::combine_fragment(const ShadingState& st, const ShadingPlan& plan, 
       in.texture[u] = tex[u].data();
     }
     std::array<std::uint16_t, 4> o{};
-    combiners::shade_span(cp, in, fog_color, o.data());
+    combiners::RegisterTrace trace;
+    combiners::shade_span(cp, in, fog_color, o.data(), shade_probe_ ? &trace : nullptr);
+    probe_registers(trace);
     for (int c = 0; c < 4; ++c) out.code[c] = o[c];
   } else {
     std::array<std::array<double, 4>, kShadeUnits> tex{};
@@ -131,7 +171,9 @@ Rgba Context::combine_fragment(const ShadingState& st, const ShadingPlan& plan, 
       in.texture[u] = tex[u].data();
     }
     std::array<double, 4> o{};
-    combiners::shade_span(cp, in, fog_color, o.data());
+    combiners::RegisterTrace trace;
+    combiners::shade_span(cp, in, fog_color, o.data(), shade_probe_ ? &trace : nullptr);
+    probe_registers(trace);
     out.value = o;
   }
   return out;
@@ -257,7 +299,13 @@ void Context::draw_polygon(std::vector<ClipVertex> poly, std::size_t provoking, 
               tc[u].lambda = static_cast<double>(std::log2(std::max(rx, ry)));
             }
           }
+          const bool probed = probe_.hits(span.x0 + f, span.y);
+          std::string note;
+          if (probed) shade_probe_ = &note;
           out = shade_fragment(st, plan, primary, secondary, tc);
+          shade_probe_ = nullptr;
+          if (probed) probe_.record("shading", "primary " + describe_rgba(primary, st.color) + note + "\n    fragment colour " +
+                                                   describe_rgba(out, st.color));
         }
         for (int k = 0; k < 4; ++k) {
           if (arith == Arithmetic::Fixed) span.codes[4 * static_cast<std::size_t>(f) + k] = static_cast<std::uint16_t>(out.code[k]);

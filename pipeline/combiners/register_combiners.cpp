@@ -21,9 +21,17 @@ struct Entry {
   }
 };
 
+template <class T>
+void record(RegisterTrace* trace, int i, const RegisterSet<T>& r, double scale) {
+  if (!trace || i != 0) return;
+  auto& snap = trace->after_stage.emplace_back();
+  for (int k = 0; k < kRegisterCount; ++k)
+    for (int c = 0; c < 4; ++c) snap[static_cast<std::size_t>(k)][static_cast<std::size_t>(c)] = static_cast<double>(r.v[k][c]) / scale;
+}
+
 template <class Acc>
 void shade_fixed(const CombinerPlan& plan, const CombinerInputsFixed& in, const std::array<double, 4>& fog_color,
-                 std::uint16_t* out) {
+                 std::uint16_t* out, RegisterTrace* trace) {
   const CombinerConfig& cfg = plan.config;
   const std::int32_t M = plan.M;
   const Entry color(cfg.color_bits, cfg.combiner_bits, M), texel(cfg.texture_bits, cfg.combiner_bits, M);
@@ -63,6 +71,7 @@ void shade_fixed(const CombinerPlan& plan, const CombinerInputsFixed& in, const 
           r.v[kConstantColor1][c] = st.constant_codes[1][static_cast<std::size_t>(c)];
         }
       general_combiner_fixed(st, r, M, per_product);
+      record(trace, i, r, static_cast<double>(M));
     }
     if (own_constants)  // RC2: the final combiner always reads the global constants
       for (int c = 0; c < 4; ++c) {
@@ -75,7 +84,7 @@ void shade_fixed(const CombinerPlan& plan, const CombinerInputsFixed& in, const 
 
 template <class T>
 void shade_float(const CombinerPlan& plan, const CombinerInputsFloat& in, const std::array<double, 4>& fog_color,
-                 double* out) {
+                 double* out, RegisterTrace* trace) {
   const CombinerConfig& cfg = plan.config;
   RegisterSet<T> r;
   for (int i = 0; i < in.count; ++i) {
@@ -110,6 +119,7 @@ void shade_float(const CombinerPlan& plan, const CombinerInputsFloat& in, const 
         }
       }
       general_combiner_float<T>(st, r);
+      record(trace, i, r, 1.0);
     }
     if (own)
       for (std::size_t c = 0; c < 4; ++c) {
@@ -125,15 +135,15 @@ void shade_float(const CombinerPlan& plan, const CombinerInputsFloat& in, const 
 }  // namespace
 
 void shade_span(const CombinerPlan& plan, const CombinerInputsFixed& in, const std::array<double, 4>& fog_color,
-                std::uint16_t* out) {
-  if (final_needs_int128(plan.M, plan.config.color_bits)) shade_fixed<Int128>(plan, in, fog_color, out);
-  else shade_fixed<std::int64_t>(plan, in, fog_color, out);
+                std::uint16_t* out, RegisterTrace* trace) {
+  if (final_needs_int128(plan.M, plan.config.color_bits)) shade_fixed<Int128>(plan, in, fog_color, out, trace);
+  else shade_fixed<std::int64_t>(plan, in, fog_color, out, trace);
 }
 
 void shade_span(const CombinerPlan& plan, const CombinerInputsFloat& in, const std::array<double, 4>& fog_color,
-                double* out) {
-  if (plan.config.arithmetic == Arithmetic::Float32) shade_float<float>(plan, in, fog_color, out);
-  else shade_float<double>(plan, in, fog_color, out);
+                double* out, RegisterTrace* trace) {
+  if (plan.config.arithmetic == Arithmetic::Float32) shade_float<float>(plan, in, fog_color, out, trace);
+  else shade_float<double>(plan, in, fog_color, out, trace);
 }
 
 }  // namespace ffsim::combiners

@@ -12,20 +12,27 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <vector>
 
 #include "pipeline/combiners/combiner_plan.h"
 
 namespace ffsim::combiners {
 
+// Register values (real values: code / M in fixed profiles) after each general
+// stage of the first fragment of a span, for single-pixel tracing (--probe).
+struct RegisterTrace {
+  std::vector<std::array<std::array<double, 4>, kRegisterCount>> after_stage;  // one per planned stage
+};
+
 // Fixed profiles: out receives 4 codes per fragment (R,G,B,A) at config.color_bits.
 // fog_color: the GL fog colour (clamped to [0,1] when it was set), rounded to the
 // colour width on entry like the constants (choice #36).
 void shade_span(const CombinerPlan& plan, const CombinerInputsFixed& in, const std::array<double, 4>& fog_color,
-                std::uint16_t* out);
+                std::uint16_t* out, RegisterTrace* trace = nullptr);
 
 // Float profiles (config.arithmetic Float32 or Float64): out receives 4 values per
 // fragment in [0,1]; with Float32 every value is a binary32 (converted to double).
 void shade_span(const CombinerPlan& plan, const CombinerInputsFloat& in, const std::array<double, 4>& fog_color,
-                double* out);
+                double* out, RegisterTrace* trace = nullptr);
 
 }  // namespace ffsim::combiners

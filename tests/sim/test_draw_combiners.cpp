@@ -137,3 +137,21 @@ TEST_CASE("draw with combiners: dot product of two expanded textures into alpha,
     CHECK(buffer_hash(ctx.framebuffer(), BufferKind::Color) == planned);
   }
 }
+
+TEST_CASE("draw with combiners: --probe traces the texel and every combiner stage of one pixel") {
+  Context ctx(profile_named("geforce256"), 4, 4);
+  ortho_window(ctx);
+  setup_texture(ctx, 0);
+  ctx.enable(gl::REGISTER_COMBINERS_NV);
+  ctx.combinerInput(gl::COMBINER0_NV, gl::RGB, gl::VARIABLE_A_NV, gl::TEXTURE0, gl::UNSIGNED_IDENTITY_NV, gl::RGB);
+  ctx.combinerInput(gl::COMBINER0_NV, gl::RGB, gl::VARIABLE_B_NV, gl::ZERO, gl::UNSIGNED_INVERT_NV, gl::RGB);
+  ctx.probe().set_target(3, 1);  // texel (1, 0) = (200, 150, 100, 50)
+  ctx.color4(1, 1, 1, 1);
+  textured_quad(ctx);
+  std::string shading;
+  for (const auto& r : ctx.probe().records())
+    if (r.stage == "shading") shading = r.text;
+  CHECK(shading.find("filtered texel (register layout) codes (200, 150, 100, 50)") != std::string::npos);
+  CHECK(shading.find("after stage 0: spare0 = codes (200, 150, 100, 255)/255") != std::string::npos);
+  CHECK(shading.find("fragment colour codes (200, 150, 100, 255)") != std::string::npos);
+}

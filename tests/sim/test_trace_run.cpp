@@ -341,8 +341,9 @@ TEST_CASE("trace run: write_fragments records the probed pixel") {
   REQUIRE(ctx.probe().records().size() == 1);
   CHECK(ctx.probe().records()[0].stage == "write_fragments");
   CHECK(ctx.probe().records()[0].text ==
-        "fragment codes (50, 60, 70, 80) = (0.196078, 0.235294, 0.27451, 0.313725), framebuffer codes (0, 0, 0, 0) = "
-        "(0, 0, 0, 0) -> codes (50, 60, 70, 80) = (0.196078, 0.235294, 0.27451, 0.313725)");
+        "fragment codes (50, 60, 70, 80) = (0.196078, 0.235294, 0.27451, 0.313725)\n"
+        "    before: color codes (0, 0, 0, 0) = (0, 0, 0, 0), stencil 0, depth 0\n"
+        "    after:  color codes (50, 60, 70, 80) = (0.196078, 0.235294, 0.27451, 0.313725), stencil 0, depth 0");
 }
 
 TEST_CASE("trace binder: the table builds and bindings are checked") {
