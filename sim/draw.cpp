@@ -95,6 +95,11 @@ Rgba Context::shade_fragment(const ShadingState& st, const ShadingPlan& plan, co
       *shade_probe_ += "\n    unit " + std::to_string(u) + ": s,t = " + std::to_string(tc[u].s) + ", " + std::to_string(tc[u].t) +
                        " lambda " + std::to_string(tc[u].lambda) + ", filtered texel (register layout) " +
                        (st.color.fixed() ? describe_codes(k.data(), t.bits) : describe_values(t.value.data()));
+      // The filter footprint at the base level with the magnification filter
+      // (the level and filter a magnified or pixel-rectangle fragment uses).
+      const TextureObject& tex = *st.units[u].texture;
+      *shade_probe_ += "\n      footprint: " + describe_footprint(tex, tex.params.base_level, st.units[u].dims,
+                                                                 tex.params.mag_filter, tc[u].s, tc[u].t, st.sample);
     }
   if (!combiners_.enabled) return texture_environments(st, plan, primary, secondary, texels);  // step 2
   return combine_fragment(st, plan, primary, secondary, texels);

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "pipeline/number/unorm.h"
 
@@ -239,6 +241,55 @@ bool texture_complete(const TextureObject& tex, int dims, const SampleFormat& fm
       return false;
   }
   return true;
+}
+
+std::string describe_footprint(const TextureObject& tex, int level, int dims, GLenum filter, double s, double t,
+                               const SampleFormat& fmt) {
+  const TextureImage& im = tex.levels[static_cast<std::size_t>(level)];
+  const int n = component_count(im.base);
+  const int ws = level_width(im), hs = level_height(im, dims);
+  const bool fixed = fmt.arith == Arithmetic::Fixed;
+  const std::array<double, 4> bd = border_components(im.base, tex.params.border_color);
+  std::array<std::uint32_t, 4> bcode{};
+  for (int c = 0; c < n; ++c) bcode[c] = unorm_from_double(bd[c], im.bits);
+  auto texel = [&](int i, int j) {
+    std::string r("[");
+    r.append(std::to_string(i));
+    if (dims == 2) r.append(",").append(std::to_string(j));
+    r.append("] (");
+    for (int c = 0; c < n; ++c) {
+      if (c) r += ", ";
+      if (fixed) r += std::to_string(fetch(im, dims, i, j, bcode)[c]);
+      else {
+        const std::array<double, 4> v = fetch(im, dims, i, j, bd);
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%.6g", v[c]);
+        r += buf;
+      }
+    }
+    return r.append(")");
+  };
+  const auto sf = static_cast<float>(s), tf = static_cast<float>(t);  // as sample_level rounds them
+  std::string out("level ");
+  out.append(std::to_string(level));
+  if (filter == gl::NEAREST) {
+    const int i = nearest_index(fixed ? sf : s, ws, tex.params.wrap_s);
+    const int j = dims == 1 ? 0 : nearest_index(fixed ? tf : t, hs, tex.params.wrap_t);
+    return out.append(" NEAREST texel ").append(texel(i, j));
+  }
+  const LinearAxis<double> ax = linear_axis<double>(fixed ? sf : s, ws, tex.params.wrap_s);
+  const LinearAxis<double> ay = dims == 1 ? LinearAxis<double>{} : linear_axis<double>(fixed ? tf : t, hs, tex.params.wrap_t);
+  auto weight = [&](double frac) {
+    if (!fixed) return std::to_string(frac);
+    const int B = fmt.weight_bits;
+    std::string w = std::to_string(static_cast<long long>(std::floor(std::ldexp(frac, B))));
+    return w.append("/").append(std::to_string(1LL << B));
+  };
+  out.append(" LINEAR alpha ").append(weight(ax.frac));
+  if (dims == 2) out.append(" beta ").append(weight(ay.frac));
+  out.append(" texels ").append(texel(ax.i0, ay.i0)).append(" ").append(texel(ax.i1, ay.i0));
+  if (dims == 2) out.append(" ").append(texel(ax.i0, ay.i1)).append(" ").append(texel(ax.i1, ay.i1));
+  return out;
 }
 
 Texel sample_level(const TextureObject& tex, int level, int dims, GLenum filter, double s, double t,

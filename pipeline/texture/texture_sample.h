@@ -15,6 +15,7 @@
 // float profiles use the real weights.
 #pragma once
 #include <array>
+#include <string>
 #include <cstdint>
 
 #include "pipeline/number/profile.h"
@@ -63,6 +64,12 @@ constexpr bool is_mipmap_filter(GLenum f) {
 // (the hardware's texture coordinate format); the ideal profile keeps binary64.
 Texel sample_level(const TextureObject& tex, int level, int dims, GLenum filter, double s, double t,
                    const SampleFormat& fmt);
+
+// For single-pixel tracing: the footprint one filter reads on one level, in
+// storage components (codes for fixed profiles): the wrapped texel indices, the
+// weights (B-bit integers over 2^B in fixed profiles) and the texels.
+std::string describe_footprint(const TextureObject& tex, int level, int dims, GLenum filter, double s, double t,
+                               const SampleFormat& fmt);
 
 // The complete lookup of GL121 §3.8.5-3.8.7 for a complete texture: λ clamped to
 // [MIN_LOD, MAX_LOD], magnification vs minification switch (c = 0.5 or 0), level

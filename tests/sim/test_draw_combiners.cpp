@@ -155,3 +155,21 @@ TEST_CASE("draw with combiners: --probe traces the texel and every combiner stag
   CHECK(shading.find("after stage 0: spare0 = codes (200, 150, 100, 255)/255") != std::string::npos);
   CHECK(shading.find("fragment colour codes (200, 150, 100, 255)") != std::string::npos);
 }
+
+TEST_CASE("draw: --probe prints the LINEAR footprint with its 8-bit weights") {
+  // Pixel (1, 1) of the 4x4 quad over the 2x2 texture: s = t = 1.5/4 = 0.375,
+  // u = 2 * 0.375 - 1/2 = 0.25, so i0 = 0, i1 = 1 and alpha = floor(0.25 * 256) = 64
+  // (GL121 eq. 3.20 with 8 weight bits); the same for t.
+  Context ctx(profile_named("geforce256"), 4, 4);
+  ortho_window(ctx);
+  setup_texture(ctx, 0);
+  ctx.texParameteri(gl::TEXTURE_2D, gl::TEXTURE_MAG_FILTER, gl::LINEAR);
+  ctx.texEnvi(gl::TEXTURE_ENV, gl::TEXTURE_ENV_MODE, gl::REPLACE);
+  ctx.probe().set_target(1, 1);
+  textured_quad(ctx);
+  std::string shading;
+  for (const auto& r : ctx.probe().records())
+    if (r.stage == "shading") shading = r.text;
+  CHECK(shading.find("footprint: level 0 LINEAR alpha 64/256 beta 64/256 texels [0,0] (10, 20, 30, 40) "
+                     "[1,0] (200, 150, 100, 50) [0,1] (0, 255, 128, 127) [1,1] (77, 88, 99, 111)") != std::string::npos);
+}
