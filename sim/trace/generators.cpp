@@ -146,6 +146,9 @@ bumpshadow::HeightField read_field(GeneratorArgs& a, const std::string& name, st
     throw TraceError(a.where("scale"), std::string("`scale` must be a positive number, got ") + format_number(scale), a.line());
   desc = bumpshadow::describe_generator(name, p) + " scale=" + format_number(scale);
   bumpshadow::HeightField hf = bumpshadow::generate(name, p);
+  if (static_cast<long long>(hf.width()) * hf.height() > a.max_pixels())
+    throw TraceError(a.where("w"), std::string("field size ") + std::to_string(hf.width()) + "x" + std::to_string(hf.height()) +
+                                       " exceeds the limit of " + std::to_string(a.max_pixels()) + " pixels", a.line());
   return scale == 1 ? hf : hf.scaled(scale);
 }
 

@@ -35,6 +35,7 @@ class GeneratorArgs {
   // Where the key's value stands (for messages about it); {} when absent.
   SourceLoc where(const std::string& key) const;
   const std::string& line() const { return line_; }
+  long long max_pixels() const { return max_pixels_; }
   // A width x height pair within the trace's pixel limit.
   std::pair<int, int> size(const std::string& wkey, const std::string& hkey, int fallback);
   // Throws for keys no read asked for.
