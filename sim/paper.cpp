@@ -366,7 +366,19 @@ int run_report(const ReportOptions& o, std::ostream& out, std::ostream& err) {
     }
     md << "\n";
   }
-  md << "Failures and notes:\n\n";
+  md << "## Reading the numbers\n\n"
+        "- `float64-ellipse-test` is the paper's test evaluated exactly on the fitted ellipses: the error of the\n"
+        "  ellipse approximation itself. `vs float64 ellipse` is each hardware variant's disagreement with it:\n"
+        "  what the 8-bit maps, the lookup table, the combiners and the frame buffer add.\n"
+        "- The antialiased factor is min(1, penumbra d) with d = r_x^2 - (L.T1)^2 - (L.T2)^2: a distance to the\n"
+        "  ellipse's border, not a visible fraction, so on lit flat ground it is about penumbra (1 - |l|^2) < 1\n"
+        "  and its RMSE against the soft reference stays large even where the classification is right.\n"
+        "- `kautz-geforce-aa-unsquared` squares after bilinear filtering: the bright seams along the sign changes of\n"
+        "  T1^r / T2^r show best in `polygon-zoom4`; at 1 pixel per texel the filter returns texels unchanged.\n"
+        "- `kautz-geforce-aa-l2printed` uses L2^n = (ly^2, ly, 1) as printed in section 5.1 (the erratum).\n"
+        "- Hard variants: the copy of step 14 also marks the background (alpha 0 there) in the stencil; only\n"
+        "  covered pixels are counted.\n\n";
+  md << "Failures:\n\n";
   for (const Row& r : rows)
     if (!r.run.ok && r.variant != "float64-ellipse-test") md << "- " << r.scene << "/" << r.variant << ": " << r.run.error << "\n";
   for (const auto& [name, ref] : refs)
