@@ -140,6 +140,7 @@ TEST_CASE("paper clamping: texels outside the imaging path's ranges give the cla
       "framebuffer 4 1\n"
       "param lx 0.7\nparam ly 0.4\n"
       "table lookup 256 0.5*(4*x-1)^2\n"
+      "glPixelStorei GL_UNPACK_ALIGNMENT 1\n"
       // biased (T + 1)/2 per texel i = 0, 1, 2, 3: (0, 0, 1), (1, 1, 0), (1, 1/2, 1/2) twice
       // (a power-of-two width; expressions have no comparisons, so min/max select)
       "table texels 4 min(i,1) (min(i,1)-0.5*min(max(i-1,0),1)) (1-min(i,1)+0.5*min(max(i-1,0),1)) 1\n"
