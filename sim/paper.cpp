@@ -22,7 +22,7 @@ namespace {
 
 const bumpshadow::HeightField& terrain_field() {
   static const bumpshadow::HeightField hf =
-      bumpshadow::generate("fractal", {{"w", "128"}, {"seed", "7"}}).scaled(2);
+      bumpshadow::generate("fractal", {{"w", "128"}, {"seed", "7"}}).scaled(4);
   return hf;
 }
 
@@ -146,8 +146,8 @@ std::vector<Scene> scenes(bool quick) {
   return {{"polygon", {{"scene", "0"}, {"res", "64"}}, "single bump-mapped polygon, 64^2 maps, 1 pixel per texel"},
           {"polygon-zoom4", {{"scene", "0"}, {"res", "64"}, {"zoom", "4"}},
            "the same polygon magnified 4x (bilinear filtering between texels)"},
-          {"terrain", {{"scene", "1"}, {"res", "128"}, {"lx", "0.8"}, {"ly", "0.5"}},
-           "terrain, 31x31 vertices, 128^2 maps, 256x144 window, low light (elevation 19 degrees)"}};
+          {"terrain", {{"scene", "1"}, {"res", "128"}, {"lx", "0.8"}, {"ly", "0.5"}, {"penumbra", "4"}},
+           "terrain, 31x31 vertices, 128^2 maps, 256x144 window, low light (elevation 19 degrees), penumbra 4"}};
 }
 
 struct Run {

@@ -18,7 +18,7 @@ namespace ffsim::paper {
 // of a kTerrainRes field, divided by kTerrainRes: world units).
 inline constexpr int kTerrainGrid = 31;
 inline constexpr int kTerrainRes = 128;
-inline constexpr const char* kTerrainField = "fractal w=128 seed=7 scale=2";
+inline constexpr const char* kTerrainField = "fractal w=128 seed=7 scale=4";
 
 // World height of the terrain at texture coordinates (s, t): the field's bilinear
 // surface at texel coordinates (s * 128 - 1/2, t * 128 - 1/2) (texel i's centre is

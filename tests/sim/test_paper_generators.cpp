@@ -125,5 +125,5 @@ TEST_CASE("paper scenes: the committed terrain meshes are what ffsim paper-mesh 
   CHECK(vertices == 30 * 62);
   // The mesh's heights are the field's surface at the vertex's texel position.
   CHECK(paper::terrain_height(0, 0) ==
-        bumpshadow::generate("fractal", {{"w", "128"}, {"seed", "7"}}).scaled(2).sample(-0.5, -0.5) / 128);
+        bumpshadow::generate("fractal", {{"w", "128"}, {"seed", "7"}}).scaled(4).sample(-0.5, -0.5) / 128);
 }
