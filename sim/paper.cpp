@@ -198,7 +198,7 @@ std::vector<bool> threshold(const std::vector<double>& v, double t) {
 }
 
 struct Row {
-  std::string scene, variant, trace, note;
+  std::string scene, variant, trace, note, sets;  // sets: every --set of the run
   Kind kind = Kind::Bump;
   Run run;
   bool has_mask = false, has_rmse = false;
@@ -271,6 +271,7 @@ int run_report(const ReportOptions& o, std::ostream& out, std::ostream& err) {
       e.trace = "kautz-reference";
       e.note = "the ellipse test in float64 (no hardware): the ellipse's own error";
       e.kind = Kind::Hard;
+      e.sets = sets_text(base);
       e.run = ref;
       e.has_mask = true;
       ellipse_lit = threshold(channel_values(*image_of(ref, "ellipse.png")), 0.5);
@@ -286,6 +287,7 @@ int run_report(const ReportOptions& o, std::ostream& out, std::ostream& err) {
       row.trace = v.trace;
       row.note = v.note;
       row.kind = v.kind;
+      row.sets = sets_text(sets);
       row.run = run_trace((fs::path(o.traces_dir) / (v.trace + ".trace")).string(), sets,
                           (fs::path(scene_dir) / v.dir).string(), o.threads);
       all_ok = all_ok && row.run.ok;
@@ -390,7 +392,7 @@ int run_report(const ReportOptions& o, std::ostream& out, std::ostream& err) {
   bool first = true;
   for (const Row& r : rows) {
     js << (first ? "" : ",\n") << "    {\"scene\": " << cli::json_string(r.scene) << ", \"variant\": " << cli::json_string(r.variant)
-       << ", \"trace\": " << cli::json_string(r.trace) << ", \"kind\": " << cli::json_string(kind_name(r.kind))
+       << ", \"trace\": " << cli::json_string(r.trace) << ", \"sets\": " << cli::json_string(r.sets) << ", \"kind\": " << cli::json_string(kind_name(r.kind))
        << ", \"note\": " << cli::json_string(r.note) << ", \"ok\": " << (r.run.ok ? "true" : "false")
        << ", \"error\": " << cli::json_string(r.run.error) << ", \"load_seconds\": " << cli::json_number(r.run.load_seconds)
        << ", \"run_seconds\": " << cli::json_number(r.run.run_seconds) << ", \"passes\": " << r.run.r.passes;
