@@ -77,10 +77,17 @@ bool Context::set_capability(GLenum cap, bool on, const char* function) {
   }
 }
 
-void Context::enable(GLenum cap) { set_capability(cap, true, "glEnable"); }
-void Context::disable(GLenum cap) { set_capability(cap, false, "glDisable"); }
+void Context::enable(GLenum cap) {
+  if (reject_in_begin("glEnable")) return;
+  set_capability(cap, true, "glEnable");
+}
+void Context::disable(GLenum cap) {
+  if (reject_in_begin("glDisable")) return;
+  set_capability(cap, false, "glDisable");
+}
 
 bool Context::isEnabled(GLenum cap) {
+  if (reject_in_begin("glIsEnabled")) return false;
   switch (cap) {
     case gl::SCISSOR_TEST: return scissor_.enabled;
     // ==== [issue 3] capabilities ====

@@ -266,20 +266,28 @@ class Context {
   // Shading (sim/draw.cpp). The state resolved for a draw (enabled, complete
   // textures; environments), its plan, and the plan as text for --explain.
   ShadingState shading_state();
-  ShadingPlan shading_plan(const ShadingState& st) const;
+  // With REGISTER_COMBINERS_NV enabled the plan samples exactly the enabled units
+  // the combiner plan reads and runs no texture environment or colour sum.
+  ShadingPlan shading_plan(const ShadingState& st);
   std::string explain_shading();
   // Run the full path instead of the plan (tests compare the two).
   void set_full_shading(bool on) { full_shading_ = on; }
   // Called with explain_shading()'s text before every draw that shades fragments.
   void set_explain_callback(std::function<void(const std::string&)> cb) { on_explain_ = std::move(cb); }
   // One fragment through the shading stages: fetch_texels (step 1) then the
-  // colour stage (texture environments + colour sum, step 2). Register
-  // combiners replace step 2 here and consume the same texels and colours.
+  // colour stage (texture environments + colour sum, step 2). With
+  // REGISTER_COMBINERS_NV enabled the register combiners replace step 2 and
+  // consume the same texels and colours (RC §3.8.11).
   Rgba shade_fragment(const ShadingState& st, const ShadingPlan& plan, const Rgba& primary, const Rgba& secondary,
                       const UnitTexCoords& tc);
+  // The register-combiner colour stage for one fragment (sim/draw.cpp).
+  Rgba combine_fragment(const ShadingState& st, const ShadingPlan& plan, const Rgba& primary, const Rgba& secondary,
+                        const UnitTexels& texels);
   // Whether fragments need shade_fragment at all (otherwise the primary colour is
   // the fragment colour). Register combiners make this true whenever enabled.
-  bool shading_active(const ShadingPlan& plan) const { return plan.any_texturing() || plan.color_sum; }
+  bool shading_active(const ShadingPlan& plan) const {
+    return combiners_.enabled || plan.any_texturing() || plan.color_sum;
+  }
   GLenum shade_model() const { return shade_model_; }
   const std::array<int, 4>& viewport_box() const { return viewport_; }
   std::array<double, 2> depth_range() const { return {depth_near_, depth_far_}; }

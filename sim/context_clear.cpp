@@ -18,21 +18,36 @@ std::string Context::probe_describe_buffers(int x, int y) const {
 }
 
 void Context::clearColor(double r, double g, double b, double a) {
+  if (reject_in_begin("glClearColor")) return;
   clear_.color = {clamp01(r), clamp01(g), clamp01(b), clamp01(a)};  // §4.2.3: clamped when specified
 }
 
 void Context::clearStencil(std::int64_t s) {
+  if (reject_in_begin("glClearStencil")) return;
   // §4.2.3: masked to the number of stencil bits when used; keep the low 32 bits.
   clear_.stencil = static_cast<std::uint32_t>(s);
 }
 
-void Context::clearDepth(double d) { clear_.depth = clamp01(d); }
+void Context::clearDepth(double d) {
+  if (reject_in_begin("glClearDepth")) return;
+  clear_.depth = clamp01(d);
+}
 
-void Context::colorMask(bool r, bool g, bool b, bool a) { masks_.color = {r, g, b, a}; }
-void Context::stencilMask(std::uint32_t mask) { masks_.stencil = mask; }
-void Context::depthMask(bool flag) { masks_.depth = flag; }
+void Context::colorMask(bool r, bool g, bool b, bool a) {
+  if (reject_in_begin("glColorMask")) return;
+  masks_.color = {r, g, b, a};
+}
+void Context::stencilMask(std::uint32_t mask) {
+  if (reject_in_begin("glStencilMask")) return;
+  masks_.stencil = mask;
+}
+void Context::depthMask(bool flag) {
+  if (reject_in_begin("glDepthMask")) return;
+  masks_.depth = flag;
+}
 
 void Context::scissor(int x, int y, int width, int height) {
+  if (reject_in_begin("glScissor")) return;
   if (width < 0 || height < 0) {
     error(gl::INVALID_VALUE, "glScissor", "width and height must not be negative (got " +
                                               std::to_string(width) + ", " + std::to_string(height) + ")");
@@ -42,6 +57,7 @@ void Context::scissor(int x, int y, int width, int height) {
 }
 
 void Context::clear(GLbitfield mask) {
+  if (reject_in_begin("glClear")) return;
   constexpr GLbitfield known = gl::COLOR_BUFFER_BIT | gl::DEPTH_BUFFER_BIT | gl::STENCIL_BUFFER_BIT |
                                gl::ACCUM_BUFFER_BIT;
   if (mask & ~known) {

@@ -59,6 +59,7 @@ static bool set_combiner_parameter(Context& ctx, CombinerState& s, const char* f
 }
 
 void Context::combinerParameterfv(GLenum pname, const float* params) {
+  if (reject_in_begin("glCombinerParameterfvNV")) return;
   const int n = pname == gl::CONSTANT_COLOR0_NV || pname == gl::CONSTANT_COLOR1_NV ? 4 : 1;
   ParamValues p{{0, 0, 0, 0}, n};
   for (int i = 0; i < n; ++i) p.v[i] = params[i];
@@ -70,6 +71,7 @@ void Context::combinerParameterfv(GLenum pname, const float* params) {
 }
 
 void Context::combinerParameterf(GLenum pname, float param) {
+  if (reject_in_begin("glCombinerParameterfNV")) return;
   CombinerState s = combiners_;
   if (set_combiner_parameter(*this, s, "glCombinerParameterfNV", pname, ParamValues{{param, 0, 0, 0}, 1}, false)) {
     combiners_ = s;
@@ -78,6 +80,7 @@ void Context::combinerParameterf(GLenum pname, float param) {
 }
 
 void Context::combinerParameteriv(GLenum pname, const std::int32_t* params) {
+  if (reject_in_begin("glCombinerParameterivNV")) return;
   const bool color = pname == gl::CONSTANT_COLOR0_NV || pname == gl::CONSTANT_COLOR1_NV;
   ParamValues p{{0, 0, 0, 0}, color ? 4 : 1};
   for (int i = 0; i < p.count; ++i) p.v[i] = color ? int_to_color(params[i]) : static_cast<double>(params[i]);
@@ -89,6 +92,7 @@ void Context::combinerParameteriv(GLenum pname, const std::int32_t* params) {
 }
 
 void Context::combinerParameteri(GLenum pname, std::int32_t param) {
+  if (reject_in_begin("glCombinerParameteriNV")) return;
   CombinerState s = combiners_;
   if (set_combiner_parameter(*this, s, "glCombinerParameteriNV", pname,
                              ParamValues{{static_cast<double>(param), 0, 0, 0}, 1}, false)) {
@@ -101,6 +105,7 @@ void Context::combinerParameteri(GLenum pname, std::int32_t param) {
 
 void Context::combinerInput(GLenum stage, GLenum portion, GLenum variable, GLenum input, GLenum mapping,
                             GLenum componentUsage) {
+  if (reject_in_begin("glCombinerInputNV")) return;
   const char* fn = "glCombinerInputNV";
   const int st = stage_index(stage, profile_.general_combiners);
   if (st < 0) {
@@ -121,6 +126,7 @@ void Context::combinerInput(GLenum stage, GLenum portion, GLenum variable, GLenu
 
 void Context::combinerOutput(GLenum stage, GLenum portion, GLenum abOutput, GLenum cdOutput, GLenum sumOutput,
                              GLenum scale, GLenum bias, bool abDotProduct, bool cdDotProduct, bool muxSum) {
+  if (reject_in_begin("glCombinerOutputNV")) return;
   const char* fn = "glCombinerOutputNV";
   const int st = stage_index(stage, profile_.general_combiners);
   if (st < 0) {
@@ -148,6 +154,7 @@ void Context::combinerOutput(GLenum stage, GLenum portion, GLenum abOutput, GLen
 }
 
 void Context::finalCombinerInput(GLenum variable, GLenum input, GLenum mapping, GLenum componentUsage) {
+  if (reject_in_begin("glFinalCombinerInputNV")) return;
   const Check c = check_final_combiner_input(variable, input, mapping, componentUsage, profile_.texture_units);
   if (!c) {
     error(c.error, "glFinalCombinerInputNV", c.message);
@@ -159,6 +166,7 @@ void Context::finalCombinerInput(GLenum variable, GLenum input, GLenum mapping, 
 }
 
 void Context::combinerStageParameterfv(GLenum stage, GLenum pname, const float* params) {
+  if (reject_in_begin("glCombinerStageParameterfvNV")) return;
   const char* fn = "glCombinerStageParameterfvNV";
   const int st = stage_index(stage, profile_.general_combiners);
   if (st < 0) {
@@ -242,6 +250,7 @@ bool final_parameter(Context& ctx, const CombinerState& s, const char* fn, GLenu
 
 void Context::getCombinerInputParameterfv(GLenum stage, GLenum portion, GLenum variable, GLenum pname,
                                           float* params) {
+  if (reject_in_begin("glGetCombinerInputParameterfvNV")) return;
   const char* fn = "glGetCombinerInputParameterfvNV";
   std::int64_t v = 0;
   if (const VariableState* var = general_variable(*this, combiners_, fn, stage, portion, variable))
@@ -250,6 +259,7 @@ void Context::getCombinerInputParameterfv(GLenum stage, GLenum portion, GLenum v
 
 void Context::getCombinerInputParameteriv(GLenum stage, GLenum portion, GLenum variable, GLenum pname,
                                           std::int32_t* params) {
+  if (reject_in_begin("glGetCombinerInputParameterivNV")) return;
   const char* fn = "glGetCombinerInputParameterivNV";
   std::int64_t v = 0;
   if (const VariableState* var = general_variable(*this, combiners_, fn, stage, portion, variable))
@@ -257,30 +267,35 @@ void Context::getCombinerInputParameteriv(GLenum stage, GLenum portion, GLenum v
 }
 
 void Context::getCombinerOutputParameterfv(GLenum stage, GLenum portion, GLenum pname, float* params) {
+  if (reject_in_begin("glGetCombinerOutputParameterfvNV")) return;
   std::int64_t v = 0;
   if (output_parameter(*this, combiners_, "glGetCombinerOutputParameterfvNV", stage, portion, pname, v))
     params[0] = static_cast<float>(v);
 }
 
 void Context::getCombinerOutputParameteriv(GLenum stage, GLenum portion, GLenum pname, std::int32_t* params) {
+  if (reject_in_begin("glGetCombinerOutputParameterivNV")) return;
   std::int64_t v = 0;
   if (output_parameter(*this, combiners_, "glGetCombinerOutputParameterivNV", stage, portion, pname, v))
     params[0] = static_cast<std::int32_t>(v);
 }
 
 void Context::getFinalCombinerInputParameterfv(GLenum variable, GLenum pname, float* params) {
+  if (reject_in_begin("glGetFinalCombinerInputParameterfvNV")) return;
   std::int64_t v = 0;
   if (final_parameter(*this, combiners_, "glGetFinalCombinerInputParameterfvNV", variable, pname, v))
     params[0] = static_cast<float>(v);
 }
 
 void Context::getFinalCombinerInputParameteriv(GLenum variable, GLenum pname, std::int32_t* params) {
+  if (reject_in_begin("glGetFinalCombinerInputParameterivNV")) return;
   std::int64_t v = 0;
   if (final_parameter(*this, combiners_, "glGetFinalCombinerInputParameterivNV", variable, pname, v))
     params[0] = static_cast<std::int32_t>(v);
 }
 
 void Context::getCombinerStageParameterfv(GLenum stage, GLenum pname, float* params) {
+  if (reject_in_begin("glGetCombinerStageParameterfvNV")) return;
   const char* fn = "glGetCombinerStageParameterfvNV";
   const int st = stage_index(stage, profile_.general_combiners);
   if (st < 0) {

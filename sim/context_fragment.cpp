@@ -15,6 +15,7 @@ std::string bad(const char* what, GLenum v) { return gl::enum_name(v) + " is not
 }  // namespace
 
 void Context::alphaFunc(GLenum func, double ref) {
+  if (reject_in_begin("glAlphaFunc")) return;
   if (!valid_test_func(func)) {
     error(gl::INVALID_ENUM, "glAlphaFunc", bad("comparison function", func));
     return;
@@ -24,6 +25,7 @@ void Context::alphaFunc(GLenum func, double ref) {
 }
 
 void Context::stencilFunc(GLenum func, std::int32_t ref, std::uint32_t mask) {
+  if (reject_in_begin("glStencilFunc")) return;
   if (!valid_test_func(func)) {
     error(gl::INVALID_ENUM, "glStencilFunc", bad("comparison function", func));
     return;
@@ -34,6 +36,7 @@ void Context::stencilFunc(GLenum func, std::int32_t ref, std::uint32_t mask) {
 }
 
 void Context::stencilOp(GLenum sfail, GLenum dpfail, GLenum dppass) {
+  if (reject_in_begin("glStencilOp")) return;
   for (GLenum op : {sfail, dpfail, dppass})
     if (!valid_stencil_op(op)) {
       error(gl::INVALID_ENUM, "glStencilOp", bad("stencil operation", op));
@@ -45,6 +48,7 @@ void Context::stencilOp(GLenum sfail, GLenum dpfail, GLenum dppass) {
 }
 
 void Context::depthFunc(GLenum func) {
+  if (reject_in_begin("glDepthFunc")) return;
   if (!valid_test_func(func)) {
     error(gl::INVALID_ENUM, "glDepthFunc", bad("comparison function", func));
     return;
@@ -53,6 +57,7 @@ void Context::depthFunc(GLenum func) {
 }
 
 void Context::blendFunc(GLenum sfactor, GLenum dfactor) {
+  if (reject_in_begin("glBlendFunc")) return;
   if (!valid_blend_src_factor(sfactor)) {
     error(gl::INVALID_ENUM, "glBlendFunc", bad("source blend factor", sfactor));
     return;
@@ -68,6 +73,7 @@ void Context::blendFunc(GLenum sfactor, GLenum dfactor) {
 }
 
 void Context::blendEquation(GLenum mode) {
+  if (reject_in_begin("glBlendEquation")) return;
   if (!valid_blend_equation(mode)) {
     error(gl::INVALID_ENUM, "glBlendEquation", bad("blend equation", mode));
     return;
@@ -76,10 +82,12 @@ void Context::blendEquation(GLenum mode) {
 }
 
 void Context::blendColor(double r, double g, double b, double a) {
+  if (reject_in_begin("glBlendColor")) return;
   blend_.color = {clamp01(r), clamp01(g), clamp01(b), clamp01(a)};  // EXT_blend_color: clamped when specified
 }
 
 void Context::logicOp(GLenum opcode) {
+  if (reject_in_begin("glLogicOp")) return;
   if (!valid_logic_op(opcode)) {
     error(gl::INVALID_ENUM, "glLogicOp", bad("logic op", opcode));
     return;

@@ -24,6 +24,20 @@ namespace {
 bool too_large(int width, int height) {
   return static_cast<long long>(width) * height > kMaxFramebufferPixels;
 }
+
+// The checks DrawPixels and ReadPixels share: the buffer a STENCIL_INDEX or
+// DEPTH_COMPONENT rectangle needs exists (INVALID_OPERATION), and the size is
+// within the limit (OUT_OF_MEMORY). Raises the error and returns false otherwise.
+bool rectangle_buffers_ok(Context& c, const char* fn, GLenum format, int width, int height) {
+  if (format == gl::STENCIL_INDEX && !c.framebuffer().has_stencil())
+    return c.error(gl::INVALID_OPERATION, fn, "STENCIL_INDEX with no stencil buffer");
+  if (format == gl::DEPTH_COMPONENT && !c.framebuffer().has_depth())
+    return c.error(gl::INVALID_OPERATION, fn, "DEPTH_COMPONENT with no depth buffer");
+  if (too_large(width, height))
+    return c.error(gl::OUT_OF_MEMORY, fn,
+                   "a " + std::to_string(width) + "x" + std::to_string(height) + " rectangle is too large");
+  return true;
+}
 }  // namespace
 
 void Context::group_extent(int n, int m, int& x0, int& x1, int& y0, int& y1) const {
@@ -193,6 +207,7 @@ void Context::draw_pixels(int width, int height, GLenum format, GLenum type, con
 }
 
 void Context::drawPixels(int width, int height, GLenum format, GLenum type, const void* data) {
+  if (reject_in_begin("glDrawPixels")) return;
   static const char* fn = "glDrawPixels";
   if (width < 0 || height < 0) {
     error(gl::INVALID_VALUE, fn, "width and height must not be negative");
@@ -210,18 +225,7 @@ void Context::drawPixels(int width, int height, GLenum format, GLenum type, cons
                                                           : std::string(" is not a pixel type")));
     return;
   }
-  if (format == gl::STENCIL_INDEX && !fb_.has_stencil()) {
-    error(gl::INVALID_OPERATION, fn, "STENCIL_INDEX with no stencil buffer");
-    return;
-  }
-  if (format == gl::DEPTH_COMPONENT && !fb_.has_depth()) {
-    error(gl::INVALID_OPERATION, fn, "DEPTH_COMPONENT with no depth buffer");
-    return;
-  }
-  if (too_large(width, height)) {
-    error(gl::OUT_OF_MEMORY, fn, "a " + std::to_string(width) + "x" + std::to_string(height) + " rectangle is too large");
-    return;
-  }
+  if (!rectangle_buffers_ok(*this, fn, format, width, height)) return;
   if (width == 0 || height == 0) return;
   if (!data) {
     error(gl::INVALID_VALUE, fn, "no pixel data");
@@ -258,6 +262,7 @@ void Context::read_pixels(int x, int y, int width, int height, GLenum format, GL
 }
 
 void Context::readPixels(int x, int y, int width, int height, GLenum format, GLenum type, void* data) {
+  if (reject_in_begin("glReadPixels")) return;
   static const char* fn = "glReadPixels";
   if (width < 0 || height < 0) {
     error(gl::INVALID_VALUE, fn, "width and height must not be negative");
@@ -275,18 +280,7 @@ void Context::readPixels(int x, int y, int width, int height, GLenum format, GLe
     error(gl::INVALID_ENUM, fn, gl::enum_name(type) + " is not a pixel type ffsim packs");
     return;
   }
-  if (format == gl::STENCIL_INDEX && !fb_.has_stencil()) {
-    error(gl::INVALID_OPERATION, fn, "STENCIL_INDEX with no stencil buffer");
-    return;
-  }
-  if (format == gl::DEPTH_COMPONENT && !fb_.has_depth()) {
-    error(gl::INVALID_OPERATION, fn, "DEPTH_COMPONENT with no depth buffer");
-    return;
-  }
-  if (too_large(width, height)) {
-    error(gl::OUT_OF_MEMORY, fn, "a " + std::to_string(width) + "x" + std::to_string(height) + " rectangle is too large");
-    return;
-  }
+  if (!rectangle_buffers_ok(*this, fn, format, width, height)) return;
   if (width == 0 || height == 0) return;
   if (!data) {
     error(gl::INVALID_VALUE, fn, "no destination");
@@ -315,6 +309,7 @@ void Context::copy_pixels(int x, int y, int width, int height, GLenum type) {
 }
 
 void Context::copyPixels(int x, int y, int width, int height, GLenum type) {
+  if (reject_in_begin("glCopyPixels")) return;
   static const char* fn = "glCopyPixels";
   if (type != gl::COLOR && type != gl::STENCIL && type != gl::DEPTH) {
     error(gl::INVALID_ENUM, fn, gl::enum_name(type) + " is not COLOR, STENCIL or DEPTH");

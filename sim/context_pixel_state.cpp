@@ -55,6 +55,7 @@ int Context::pixel_is_enabled(GLenum cap) const {
 // ---- glPixelStore (§3.6.1, Table 3.1; §4.3.2 Table 4.5) ----------------------
 
 void Context::pixelStorei(GLenum pname, std::int64_t param) {
+  if (reject_in_begin("glPixelStorei")) return;
   static const char* fn = "glPixelStore";
   pixel::PixelStoreModes* m = nullptr;
   switch (pname) {
@@ -90,6 +91,7 @@ void Context::pixelStorei(GLenum pname, std::int64_t param) {
 }
 
 void Context::pixelStoref(GLenum pname, double param) {
+  if (reject_in_begin("glPixelStoref")) return;
   // §3.6.1: boolean parameters are false iff param is 0; integer ones are rounded.
   if (pname == gl::UNPACK_SWAP_BYTES || pname == gl::UNPACK_LSB_FIRST || pname == gl::PACK_SWAP_BYTES ||
       pname == gl::PACK_LSB_FIRST) {
@@ -103,6 +105,7 @@ void Context::pixelStoref(GLenum pname, double param) {
 // ---- glPixelTransfer (§3.6.3, Table 3.2; imaging subset) ---------------------
 
 void Context::pixelTransferf(GLenum pname, double v) {
+  if (reject_in_begin("glPixelTransferf")) return;
   pixel::PixelTransferState& t = pixel_transfer_;
   switch (pname) {
     case gl::MAP_COLOR: t.map_color = v != 0.0; return;
@@ -134,11 +137,15 @@ void Context::pixelTransferf(GLenum pname, double v) {
   }
 }
 
-void Context::pixelTransferi(GLenum pname, std::int64_t param) { pixelTransferf(pname, static_cast<double>(param)); }
+void Context::pixelTransferi(GLenum pname, std::int64_t param) {
+  if (reject_in_begin("glPixelTransferi")) return;
+  pixelTransferf(pname, static_cast<double>(param));
+}
 
 // ---- glPixelMap (§3.6.3, Table 3.3) -------------------------------------------
 
 void Context::pixelMapfv(GLenum map, int mapsize, const double* values) {
+  if (reject_in_begin("glPixelMapfv")) return;
   static const char* fn = "glPixelMapfv";
   const bool color = map >= gl::PIXEL_MAP_R_TO_R && map <= gl::PIXEL_MAP_A_TO_A;
   const bool index = map == gl::PIXEL_MAP_S_TO_S || map == gl::PIXEL_MAP_I_TO_I ||
@@ -174,7 +181,10 @@ void Context::pixelMapfv(GLenum map, int mapsize, const double* values) {
   }
 }
 
-void Context::pixelZoom(double xfactor, double yfactor) { pixel_zoom_ = {xfactor, yfactor}; }
+void Context::pixelZoom(double xfactor, double yfactor) {
+  if (reject_in_begin("glPixelZoom")) return;
+  pixel_zoom_ = {xfactor, yfactor};
+}
 
 // ---- colour tables (§3.6.3 "Color Table Specification") ---------------------
 
@@ -239,6 +249,7 @@ void Context::color_table(const char* fn, GLenum target, GLenum internalformat, 
 
 void Context::colorTable(GLenum target, GLenum internalformat, int width, GLenum format, GLenum type,
                          const void* data) {
+  if (reject_in_begin("glColorTable")) return;
   if (profile_.arithmetic == Arithmetic::Float64)
     color_table<double>("glColorTable", target, internalformat, width, format, type, data, nullptr);
   else
@@ -246,6 +257,7 @@ void Context::colorTable(GLenum target, GLenum internalformat, int width, GLenum
 }
 
 void Context::copyColorTable(GLenum target, GLenum internalformat, int x, int y, int width) {
+  if (reject_in_begin("glCopyColorTable")) return;
   const int xy[2] = {x, y};
   if (profile_.arithmetic == Arithmetic::Float64)
     color_table<double>("glCopyColorTable", target, internalformat, width, 0, 0, nullptr, xy);
@@ -254,6 +266,7 @@ void Context::copyColorTable(GLenum target, GLenum internalformat, int x, int y,
 }
 
 void Context::colorTableParameterfv(GLenum target, GLenum pname, const double params[4]) {
+  if (reject_in_begin("glColorTableParameterfv")) return;
   static const char* fn = "glColorTableParameterfv";
   const int slot = table_slot(target);
   if (slot < 0) {
@@ -337,6 +350,7 @@ void Context::convolution_filter(const char* fn, pixel::FilterKind kind, GLenum 
 
 void Context::convolutionFilter1D(GLenum target, GLenum internalformat, int width, GLenum format, GLenum type,
                                   const void* data) {
+  if (reject_in_begin("glConvolutionFilter1D")) return;
   if (profile_.arithmetic == Arithmetic::Float64)
     convolution_filter<double>("glConvolutionFilter1D", pixel::FilterKind::OneD, target, internalformat, width, 1,
                                format, type, data, nullptr);
@@ -347,6 +361,7 @@ void Context::convolutionFilter1D(GLenum target, GLenum internalformat, int widt
 
 void Context::convolutionFilter2D(GLenum target, GLenum internalformat, int width, int height, GLenum format,
                                   GLenum type, const void* data) {
+  if (reject_in_begin("glConvolutionFilter2D")) return;
   if (profile_.arithmetic == Arithmetic::Float64)
     convolution_filter<double>("glConvolutionFilter2D", pixel::FilterKind::TwoD, target, internalformat, width,
                                height, format, type, data, nullptr);
@@ -357,6 +372,7 @@ void Context::convolutionFilter2D(GLenum target, GLenum internalformat, int widt
 
 void Context::separableFilter2D(GLenum target, GLenum internalformat, int width, int height, GLenum format,
                                 GLenum type, const void* row, const void* column) {
+  if (reject_in_begin("glSeparableFilter2D")) return;
   if (profile_.arithmetic == Arithmetic::Float64)
     convolution_filter<double>("glSeparableFilter2D", pixel::FilterKind::Separable, target, internalformat, width,
                                height, format, type, row, column);
@@ -366,6 +382,7 @@ void Context::separableFilter2D(GLenum target, GLenum internalformat, int width,
 }
 
 void Context::convolutionParameteri(GLenum target, GLenum pname, std::int64_t param) {
+  if (reject_in_begin("glConvolutionParameteri")) return;
   static const char* fn = "glConvolutionParameteri";
   pixel::ConvolutionFilter* f = convolution_target(target);
   if (!f) {
@@ -386,6 +403,7 @@ void Context::convolutionParameteri(GLenum target, GLenum pname, std::int64_t pa
 }
 
 void Context::convolutionParameterfv(GLenum target, GLenum pname, const double params[4]) {
+  if (reject_in_begin("glConvolutionParameterfv")) return;
   static const char* fn = "glConvolutionParameterfv";
   pixel::ConvolutionFilter* f = convolution_target(target);
   if (!f) {

@@ -109,6 +109,7 @@ bool Context::tex_sub_image(const char* fn, int dims, GLenum target, int level, 
 
 void Context::texImage1D(GLenum target, int level, GLenum internalformat, int width, int border, GLenum format,
                          GLenum type, const void* data) {
+  if (reject_in_begin("glTexImage1D")) return;
   if (profile_.arithmetic == Arithmetic::Float64)
     tex_image<double>("glTexImage1D", 1, target, level, internalformat, width, 1, border, format, type, data, nullptr);
   else
@@ -117,6 +118,7 @@ void Context::texImage1D(GLenum target, int level, GLenum internalformat, int wi
 
 void Context::texImage2D(GLenum target, int level, GLenum internalformat, int width, int height, int border,
                          GLenum format, GLenum type, const void* data) {
+  if (reject_in_begin("glTexImage2D")) return;
   if (profile_.arithmetic == Arithmetic::Float64)
     tex_image<double>("glTexImage2D", 2, target, level, internalformat, width, height, border, format, type, data,
                       nullptr);
@@ -127,6 +129,7 @@ void Context::texImage2D(GLenum target, int level, GLenum internalformat, int wi
 
 void Context::texSubImage1D(GLenum target, int level, int xoffset, int width, GLenum format, GLenum type,
                             const void* data) {
+  if (reject_in_begin("glTexSubImage1D")) return;
   if (profile_.arithmetic == Arithmetic::Float64)
     tex_sub_image<double>("glTexSubImage1D", 1, target, level, xoffset, 0, width, 1, format, type, data, nullptr);
   else
@@ -135,6 +138,7 @@ void Context::texSubImage1D(GLenum target, int level, int xoffset, int width, GL
 
 void Context::texSubImage2D(GLenum target, int level, int xoffset, int yoffset, int width, int height, GLenum format,
                             GLenum type, const void* data) {
+  if (reject_in_begin("glTexSubImage2D")) return;
   if (profile_.arithmetic == Arithmetic::Float64)
     tex_sub_image<double>("glTexSubImage2D", 2, target, level, xoffset, yoffset, width, height, format, type, data,
                           nullptr);
@@ -144,6 +148,7 @@ void Context::texSubImage2D(GLenum target, int level, int xoffset, int yoffset, 
 }
 
 void Context::copyTexImage1D(GLenum target, int level, GLenum internalformat, int x, int y, int width, int border) {
+  if (reject_in_begin("glCopyTexImage1D")) return;
   const int xy[2] = {x, y};
   if (profile_.arithmetic == Arithmetic::Float64)
     tex_image<double>("glCopyTexImage1D", 1, target, level, internalformat, width, 1, border, 0, 0, nullptr, xy);
@@ -153,6 +158,7 @@ void Context::copyTexImage1D(GLenum target, int level, GLenum internalformat, in
 
 void Context::copyTexImage2D(GLenum target, int level, GLenum internalformat, int x, int y, int width, int height,
                              int border) {
+  if (reject_in_begin("glCopyTexImage2D")) return;
   const int xy[2] = {x, y};
   if (profile_.arithmetic == Arithmetic::Float64)
     tex_image<double>("glCopyTexImage2D", 2, target, level, internalformat, width, height, border, 0, 0, nullptr, xy);
@@ -161,6 +167,7 @@ void Context::copyTexImage2D(GLenum target, int level, GLenum internalformat, in
 }
 
 void Context::copyTexSubImage1D(GLenum target, int level, int xoffset, int x, int y, int width) {
+  if (reject_in_begin("glCopyTexSubImage1D")) return;
   const int xy[2] = {x, y};
   if (profile_.arithmetic == Arithmetic::Float64)
     tex_sub_image<double>("glCopyTexSubImage1D", 1, target, level, xoffset, 0, width, 1, 0, 0, nullptr, xy);
@@ -170,6 +177,7 @@ void Context::copyTexSubImage1D(GLenum target, int level, int xoffset, int x, in
 
 void Context::copyTexSubImage2D(GLenum target, int level, int xoffset, int yoffset, int x, int y, int width,
                                 int height) {
+  if (reject_in_begin("glCopyTexSubImage2D")) return;
   const int xy[2] = {x, y};
   if (profile_.arithmetic == Arithmetic::Float64)
     tex_sub_image<double>("glCopyTexSubImage2D", 2, target, level, xoffset, yoffset, width, height, 0, 0, nullptr, xy);

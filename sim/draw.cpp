@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "pipeline/combiners/register_combiners.h"
 #include "pipeline/number/unorm.h"
 #include "pipeline/raster/triangle.h"
 #include "sim/context.h"
@@ -60,7 +61,17 @@ ShadingState Context::shading_state() {
   return st;
 }
 
-ShadingPlan Context::shading_plan(const ShadingState& st) const {
+ShadingPlan Context::shading_plan(const ShadingState& st) {
+  if (combiners_.enabled) {
+    // RC §3.8.11: combiners replace the environments, colour sum and fog; texture
+    // fetching still happens, for the units the combiners read (all enabled
+    // units in the full path). A disabled unit's register is undefined -> 0.
+    ShadingPlan p;
+    const combiners::CombinerPlan& cp = combiner_plan();
+    for (int u = 0; u < st.unit_count; ++u)
+      p.sample[u] = st.units[u].texture != nullptr && (full_shading_ || cp.texture_needed[u]);
+    return p;
+  }
   return full_shading_ ? full_shading_plan(st) : plan_shading(st);
 }
 
@@ -72,8 +83,58 @@ std::string Context::explain_shading() {
 Rgba Context::shade_fragment(const ShadingState& st, const ShadingPlan& plan, const Rgba& primary,
                              const Rgba& secondary, const UnitTexCoords& tc) {
   UnitTexels texels{};
-  fetch_texels(st, plan, tc, texels);                                  // step 1
-  return texture_environments(st, plan, primary, secondary, texels);  // step 2
+  fetch_texels(st, plan, tc, texels);  // step 1
+  if (!combiners_.enabled) return texture_environments(st, plan, primary, secondary, texels);  // step 2
+  return combine_fragment(st, plan, primary, secondary, texels);
+}
+
+Rgba Context::combine_fragment(const ShadingState& st, const ShadingPlan& plan, const Rgba& primary,
+                               const Rgba& secondary, const UnitTexels& texels) {
+  // Register combiners in place of step 2, one fragment. Texture registers take
+  // the filtered texel in the register layout of RC Table NV_register_combiners.2
+  // (Texel already holds it); units not sampled are absent (undefined -> 0).
+  // Fog is not modelled: FOG.rgb = 0 and FOG.a = 1 (fog disabled, RC Table .1).
+  const combiners::CombinerPlan& cp = combiner_plan();
+  const std::array<double, 4> fog_color{0, 0, 0, 0};
+  Rgba out;
+  if (st.color.fixed()) {
+    std::array<std::uint16_t, 4> prim{}, sec{};
+    std::array<std::array<std::uint16_t, 4>, kShadeUnits> tex{};
+    combiners::CombinerInputsFixed in;
+    in.count = 1;
+    for (int c = 0; c < 4; ++c) {
+      prim[c] = static_cast<std::uint16_t>(primary.code[c]);
+      sec[c] = static_cast<std::uint16_t>(secondary.code[c]);
+    }
+    in.primary = prim.data();
+    in.secondary = sec.data();
+    for (int u = 0; u < kShadeUnits; ++u) {
+      if (!plan.sample[u]) continue;
+      const Texel& t = texels[u];
+      for (int c = 0; c < 4; ++c)  // sized formats may differ from the profile's texture width
+        tex[u][c] = static_cast<std::uint16_t>(t.bits == profile_.texture_bits ? t.code[c]
+                                                   : unorm_convert(t.code[c], t.bits, profile_.texture_bits));
+      in.texture[u] = tex[u].data();
+    }
+    std::array<std::uint16_t, 4> o{};
+    combiners::shade_span(cp, in, fog_color, o.data());
+    for (int c = 0; c < 4; ++c) out.code[c] = o[c];
+  } else {
+    std::array<std::array<double, 4>, kShadeUnits> tex{};
+    combiners::CombinerInputsFloat in;
+    in.count = 1;
+    in.primary = primary.value.data();
+    in.secondary = secondary.value.data();
+    for (int u = 0; u < kShadeUnits; ++u) {
+      if (!plan.sample[u]) continue;
+      tex[u] = texels[u].value;
+      in.texture[u] = tex[u].data();
+    }
+    std::array<double, 4> o{};
+    combiners::shade_span(cp, in, fog_color, o.data());
+    out.value = o;
+  }
+  return out;
 }
 
 void Context::draw_polygon(std::vector<ClipVertex> poly, std::size_t provoking, const ShadingState& st,

@@ -91,12 +91,17 @@ Subcommand info_command() {
           out << "  dump " << trace::buffer_kind_name(st.buffer) << " " << st.file << "  " << st.where.str() << "\n";
           any = true;
           break;
+        case trace::StepKind::DumpImage:
+          out << "  dump image " << st.image.text << " " << st.file << "  " << st.where.str() << "\n";
+          any = true;
+          break;
         case trace::StepKind::Hash:
           out << "  hash " << trace::buffer_kind_name(st.buffer) << "  " << st.where.str() << "\n";
           any = true;
           break;
         case trace::StepKind::ExpectHash:
         case trace::StepKind::ExpectPixel:
+        case trace::StepKind::ExpectImage:
         case trace::StepKind::ExpectError:
         case trace::StepKind::ExpectEnabled:
         {

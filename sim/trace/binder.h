@@ -16,6 +16,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -37,6 +38,8 @@ enum class ArgKind {
   Bitfield,  // tokens joined by `|` (GL_COLOR_BUFFER_BIT|GL_STENCIL_BUFFER_BIT) or a number
   Image,     // the name of a client image (`image`, `generate` or `table`)
   Numbers,   // `count` expressions (binary64), or all remaining ones when count is 0
+  OutImage,  // the name of client memory the call writes (glReadPixels): declared by the
+             // first call naming it, then usable as an image and by `dump image`
 };
 
 struct ArgSpec {
@@ -58,6 +61,7 @@ ArgSpec Bool(std::string name);
 ArgSpec Bitfield(std::string name, std::vector<GLenum> bits = {});
 ArgSpec ClientImage(std::string name);
 ArgSpec Numbers(std::string name, int count, bool float32 = false);
+ArgSpec ClientImageOut(std::string name);
 
 // One evaluated argument.
 struct ArgValue {
@@ -65,14 +69,21 @@ struct ArgValue {
   std::int64_t i = 0;                 // Enum, Int, Bool, Bitfield
   double f = 0;                       // Float, Float32 (already rounded)
   std::vector<double> list;           // Numbers
-  std::shared_ptr<const Image> image; // Image
+  std::shared_ptr<const Image> image; // Image (for client memory: its zero-filled initial content)
+  bool client_memory = false;         // Image, OutImage: written while the trace runs (glReadPixels)
   std::string text;                   // the token as written (for messages and --explain)
   SourceLoc where;
 };
 
+// Client memory the GL writes while a trace runs (glReadPixels targets), by image
+// name; one per run, so replays of a Program are independent.
+struct ClientMemory {
+  std::map<std::string, Image> images;
+};
+
 class Args {
  public:
-  explicit Args(const std::vector<ArgValue>& v) : v_(v) {}
+  explicit Args(const std::vector<ArgValue>& v, ClientMemory* memory = nullptr) : v_(v), memory_(memory) {}
   std::size_t size() const { return v_.size(); }
   const ArgValue& operator[](std::size_t k) const { return v_.at(k); }
   GLenum enum_at(std::size_t k) const { return static_cast<GLenum>(v_.at(k).i); }
@@ -80,21 +91,43 @@ class Args {
   double float_at(std::size_t k) const { return v_.at(k).f; }
   bool bool_at(std::size_t k) const { return v_.at(k).i != 0; }
   const std::vector<double>& numbers_at(std::size_t k) const { return v_.at(k).list; }
-  const Image& image_at(std::size_t k) const { return *v_.at(k).image; }
+  // An input image: a file, generated or table image, or client memory written by an
+  // earlier call (zeros until then).
+  const Image& image_at(std::size_t k) const;
+  // The client memory an OutImage argument names (created zero-filled on first use).
+  Image& out_image_at(std::size_t k) const;
+  const SourceLoc& where_at(std::size_t k) const { return v_.at(k).where; }
 
  private:
   const std::vector<ArgValue>& v_;
+  ClientMemory* memory_;
 };
 
 using CommandFn = std::function<void(Context&, const Args&)>;
+
+// A problem with a call's arguments found when the trace is loaded (beyond each
+// argument's kind): the argument it is reported at and the message.
+struct ArgProblem {
+  std::size_t arg = 0;
+  std::string message;
+};
+using CheckFn = std::function<std::optional<ArgProblem>(const std::vector<ArgValue>&)>;
+// The zero-filled client memory an OutImage argument declares, from the call's arguments.
+using OutShapeFn = std::function<Image(const std::vector<ArgValue>&)>;
 
 struct CommandDef {
   std::string name;  // "glClearColor"
   std::vector<ArgSpec> args;
   CommandFn call;
   bool is_pass = false;  // writes the framebuffer: a pass boundary
+  bool explained = false;  // not a pass, but --explain reports after it (texture uploads)
+  CheckFn check;         // optional load-time check of the evaluated arguments
+  OutShapeFn out_shape;  // required when an argument is an OutImage
   CommandDef& pass_boundary() { is_pass = true; return *this; }
   CommandDef& pass() { return pass_boundary(); }
+  CommandDef& checked(CheckFn f) { check = std::move(f); return *this; }
+  CommandDef& explain_after() { explained = true; return *this; }
+  CommandDef& writes_image(OutShapeFn f) { out_shape = std::move(f); return *this; }
   std::string signature() const;  // "glClearColor red green blue alpha"
 };
 
@@ -145,6 +178,9 @@ class CommandTable {
     });
   }
 
+  // Another name for a bound command (an extension's entry point, glActiveTextureARB).
+  CommandDef& alias(std::string name, const std::string& of);
+
   const CommandDef* find(const std::string& name) const;
   const std::map<std::string, CommandDef>& all() const { return defs_; }
 
@@ -173,12 +209,16 @@ const CommandTable& gl_commands();
 // gl_commands(); each area declares its own below its marker.
 void register_core_commands(CommandTable& t);
 // ==== [issue 3] pixel transfer and pixel rectangles ====
+void register_pixels_commands(CommandTable& t);
 
 // ==== [issue 4a] geometry, rasterization, texturing ====
+void register_draw_commands(CommandTable& t);
 
 // ==== [issue 4b] per-fragment operations ====
+void register_fragment_commands(CommandTable& t);
 
 // ==== [issue 5] register combiners ====
+void register_combiners_commands(CommandTable& t);
 
 
 }  // namespace ffsim::trace

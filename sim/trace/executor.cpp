@@ -89,12 +89,20 @@ class Runner {
     const Framebuffer& fb = ctx.framebuffer();
     switch (s.kind) {
       case StepKind::Call: {
-        s.def->call(ctx, Args(s.args));
+        s.def->call(ctx, Args(s.args, &memory_));
         if (s.is_pass()) after_pass(ctx, s);
+        else if (o_.explain && s.def->explained) explain_call(ctx, s);
         break;
       }
       case StepKind::Dump: {
         Image im = buffer_image(fb, s.buffer);
+        write(s.file, im);
+        if (o_.keep_images) r_.images[s.file] = std::move(im);
+        break;
+      }
+      case StepKind::DumpImage: {
+        const std::vector<ArgValue> one{s.image};
+        Image im = Args(one, &memory_).image_at(0);
         write(s.file, im);
         if (o_.keep_images) r_.images[s.file] = std::move(im);
         break;
@@ -126,6 +134,18 @@ class Runner {
           fail(s, std::string("expect pixel ") + std::to_string(s.x) + " " + std::to_string(s.y) + " " +
                       buffer_kind_name(s.buffer) + ": got " + list(got) + ", expected " + list(s.values) +
                       std::string(" (tol ") + format_number(s.tol) + ")");
+        break;
+      }
+      case StepKind::ExpectImage: {
+        const std::vector<ArgValue> one{s.image};
+        const Image& im = Args(one, &memory_).image_at(0);
+        std::vector<double> got;
+        for (int c = 0; c < im.channels; ++c) got.push_back(im.value(s.x, s.y, c));
+        bool ok = true;
+        for (std::size_t c = 0; c < got.size(); ++c) ok = ok && std::fabs(got[c] - s.values[c]) <= s.tol;
+        if (!ok)
+          fail(s, std::string("expect image ") + s.image.text + " " + std::to_string(s.x) + " " + std::to_string(s.y) + ": got " +
+                      list(got) + ", expected " + list(s.values) + std::string(" (tol ") + format_number(s.tol) + ")");
         break;
       }
       case StepKind::ExpectEnabled: {
@@ -172,19 +192,7 @@ class Runner {
     auto records = ctx.probe().take();
     if (o_.explain || (o_.probe && !records.empty())) {
       out_ << "pass " << r_.passes << ": " << s.name << " at " << s.where.str() << "\n";
-      if (o_.explain) {
-        const PassInfo info{r_.passes, s};
-        for (const auto& e : explainers().all()) {
-          const std::string text = e.explain(ctx, info);
-          std::size_t pos = 0;
-          while (pos < text.size()) {
-            std::size_t nl = text.find('\n', pos);
-            if (nl == std::string::npos) nl = text.size();
-            out_ << "  " << e.area << ": " << text.substr(pos, nl - pos) << "\n";
-            pos = nl + 1;
-          }
-        }
-      }
+      if (o_.explain) print_explainers(ctx, PassInfo{r_.passes, s, true});
       for (const auto& rec : records)
         out_ << "  probe (" << o_.probe->first << ", " << o_.probe->second << ") " << rec.stage << ": " << rec.text << "\n";
     }
@@ -197,6 +205,25 @@ class Runner {
       write(prefix + s.name + "-alpha" + ext, alpha_image(fb));
       if (fb.has_stencil()) write(prefix + s.name + "-stencil.png", stencil_image(fb));
     }
+  }
+
+  void print_explainers(Context& ctx, const PassInfo& info) {
+    for (const auto& e : explainers().all()) {
+      const std::string text = e.explain(ctx, info);
+      std::size_t pos = 0;
+      while (pos < text.size()) {
+        std::size_t nl = text.find('\n', pos);
+        if (nl == std::string::npos) nl = text.size();
+        out_ << "  " << e.area << ": " << text.substr(pos, nl - pos) << "\n";
+        pos = nl + 1;
+      }
+    }
+  }
+
+  // A call that is not a pass but says what it did (a texture upload's transfer plan).
+  void explain_call(Context& ctx, const Step& s) {
+    out_ << "call: " << s.name << " at " << s.where.str() << " (not a pass)\n";
+    print_explainers(ctx, PassInfo{r_.passes, s, false});
   }
 
   void write(const std::string& rel, const Image& im) {
@@ -240,6 +267,7 @@ class Runner {
   std::size_t seen_errors_ = 0;
   std::vector<std::string> pending_;
   std::vector<std::pair<fs::path, fs::path>> temps_;
+  ClientMemory memory_;  // glReadPixels targets of this run
 };
 
 }  // namespace

@@ -15,11 +15,14 @@
 namespace ffsim::trace {
 
 struct PassInfo {
-  int index = 0;     // 1-based pass number
+  int index = 0;     // 1-based pass number (of the last pass, for a call that is not one)
   const Step& step;  // the command that made the pass
+  bool is_pass = true;  // false: a call marked explain_after (a texture upload), not a pass
 };
 
-using Explainer = std::function<std::string(const Context&, const PassInfo&)>;
+// The Context is not const: the areas' plan accessors build and cache their plans
+// (an explainer changes no GL state and raises no GL error).
+using Explainer = std::function<std::string(Context&, const PassInfo&)>;
 
 struct ExplainerDef {
   std::string area;  // "core", "pixel transfer", "combiners", ...
@@ -40,5 +43,12 @@ const ExplainerRegistry& explainers();
 
 // The core explainer: framebuffer writes (masks, scissor, the cleared buffers).
 std::string explain_writes(const Context& ctx, const PassInfo& pass);
+// The areas' explainers: the pixel transfer plan of DrawPixels/CopyPixels, the
+// shading plan of draws, the per-fragment plan, the register-combiner equations
+// (when REGISTER_COMBINERS_NV is enabled).
+std::string explain_pixel_transfer(Context& ctx, const PassInfo& pass);
+std::string explain_shading_pass(Context& ctx, const PassInfo& pass);
+std::string explain_fragment_pass(Context& ctx, const PassInfo& pass);
+std::string explain_combiners_pass(Context& ctx, const PassInfo& pass);
 
 }  // namespace ffsim::trace

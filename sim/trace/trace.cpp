@@ -262,6 +262,7 @@ class Loader {
     else if (s == "alpha") b = BufferKind::Alpha;
     else if (s == "stencil") b = BufferKind::Stencil;
     else if (s == "depth") b = BufferKind::Depth;
+    else if (s == "image" && l.tok[0].text == "dump") fail(l, k, "`dump image` takes a name and a file: dump image NAME FILE");
     else fail(l, k, std::string("expected a buffer: color, alpha, stencil or depth; got `") + s + "`");
     if (b == BufferKind::Stencil && prog_.profile.stencil_bits == 0)
       fail(l, k, std::string("the framebuffer has no stencil buffer (profile ") + prog_.profile.name + ")");
@@ -461,25 +462,47 @@ class Loader {
     add_resource(l, name, "table", source, std::move(im));
   }
 
-  void dump(const Line& l) {
-    expect_count(l, 2, 2, "dump color|alpha|stencil|depth FILE");
-    Step s = step(l, StepKind::Dump);
-    s.buffer = buffer_kind(l, 1);
-    const std::string& f = l.tok[2].text;
+  // A dump's FILE (token k): relative, inside the output directory, a known
+  // extension, not under passes/, not written twice. Returns the normalised path.
+  std::string dump_file(const Line& l, std::size_t k) {
+    const std::string& f = l.tok[k].text;
     const fs::path p(f);
     bool bad = f.empty() || p.is_absolute() || f.back() == '/';
     for (const auto& part : p)
       if (!part.empty() && part.string()[0] == '.') bad = true;  // `..`, `.`, hidden names (temporaries)
-    if (bad) fail(l, 2, std::string("dump file `") + f + "` must be a relative path inside the output directory (no `..`, no names starting with `.`)");
+    if (bad) fail(l, k, std::string("dump file `") + f + "` must be a relative path inside the output directory (no `..`, no names starting with `.`)");
     std::string ext = p.extension().string();
     for (auto& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
     if (ext != ".png" && ext != ".exr" && ext != ".tif" && ext != ".tiff")
-      fail(l, 2, std::string("dump file `") + f + "` needs the extension .png, .exr, .tif or .tiff");
-    if (f.rfind("passes/", 0) == 0) fail(l, 2, "the directory passes/ is reserved for --dump-each-pass");
+      fail(l, k, std::string("dump file `") + f + "` needs the extension .png, .exr, .tif or .tiff");
+    if (f.rfind("passes/", 0) == 0) fail(l, k, "the directory passes/ is reserved for --dump-each-pass");
     if (auto it = dump_files_.find(p.lexically_normal().string()); it != dump_files_.end())
-      fail(l, 2, std::string("`") + f + "` is already written by the dump at " + it->second.str());
+      fail(l, k, std::string("`") + f + "` is already written by the dump at " + it->second.str());
     dump_files_[p.lexically_normal().string()] = l.at(0);
-    s.file = p.lexically_normal().string();
+    return p.lexically_normal().string();
+  }
+
+  void dump(const Line& l) {
+    if (l.tok.size() >= 2 && l.tok[1].text == "image") {
+      expect_count(l, 3, 3, "dump image NAME FILE");
+      Step s = step(l, StepKind::DumpImage);
+      auto it = resources_.find(l.tok[2].text);
+      if (it == resources_.end())
+        fail(l, 2, std::string("unknown image `") + l.tok[2].text + "` (define it with image, generate, table or glReadPixels)");
+      const Resource& r = prog_.resources[it->second];
+      s.image.kind = ArgKind::Image;
+      s.image.text = r.name;
+      s.image.where = l.at(2);
+      s.image.image = r.image;
+      s.image.client_memory = r.client_memory;
+      s.file = dump_file(l, 3);
+      prog_.steps.push_back(std::move(s));
+      return;
+    }
+    expect_count(l, 2, 2, "dump color|alpha|stencil|depth FILE  or  dump image NAME FILE");
+    Step s = step(l, StepKind::Dump);
+    s.buffer = buffer_kind(l, 1);
+    s.file = dump_file(l, 2);
     prog_.steps.push_back(std::move(s));
   }
 
@@ -491,7 +514,7 @@ class Loader {
   }
 
   void expect(const Line& l) {
-    if (l.tok.size() < 2) throw TraceError(l.end(), "`expect` needs what to check: hash, pixel, error or enabled", l.text);
+    if (l.tok.size() < 2) throw TraceError(l.end(), "`expect` needs what to check: hash, pixel, image, error or enabled", l.text);
     const std::string& what = l.tok[1].text;
     if (what == "hash") {
       expect_count(l, 3, 3, "expect hash color|alpha|stencil|depth HEX");
@@ -529,6 +552,42 @@ class Loader {
         if (s.tol < 0) fail(l, k + 1, std::string("the tolerance must not be negative, got ") + format_number(s.tol));
       }
       prog_.steps.push_back(std::move(s));
+    } else if (what == "image") {
+      if (l.tok.size() < 6) throw TraceError(l.end(), "`expect image` needs NAME X Y VALUES...: expect image NAME X Y V... [tol T]", l.text);
+      Step s = step(l, StepKind::ExpectImage);
+      auto it = resources_.find(l.tok[2].text);
+      if (it == resources_.end())
+        fail(l, 2, std::string("unknown image `") + l.tok[2].text + "` (define it with image, generate, table or glReadPixels)");
+      const Resource& r = prog_.resources[it->second];
+      s.image.kind = ArgKind::Image;
+      s.image.text = r.name;
+      s.image.where = l.at(2);
+      s.image.image = r.image;
+      s.image.client_memory = r.client_memory;
+      const Image& im = *r.image;
+      if (im.width < 1 || im.height < 1) fail(l, 2, std::string("image `") + r.name + "` has no pixels");
+      s.x = static_cast<int>(eval_int(l, 3, "x", 0, im.width - 1));
+      s.y = static_cast<int>(eval_int(l, 4, "y", 0, im.height - 1));
+      const std::size_t want = static_cast<std::size_t>(im.channels);
+      std::size_t k = 5;
+      for (; k < l.tok.size() && l.tok[k].text != "tol"; ++k) {
+        if (s.values.size() == want) fail(l, k, cat("too many values: image `", r.name, "` has ", std::to_string(want), " channel", want > 1 ? "s" : ""));
+        s.values.push_back(eval(l, k));
+      }
+      if (s.values.size() < want)
+        throw TraceError(k < l.tok.size() ? l.at(k) : l.end(),
+                         cat("expected ", std::to_string(want), " value", want > 1 ? "s" : "", " for image `", r.name, "`, got ",
+                             std::to_string(s.values.size())),
+                         l.text);
+      if (k < l.tok.size()) {
+        if (k + 2 != l.tok.size()) {
+          if (k + 1 == l.tok.size()) throw TraceError(l.end(), "`tol` needs a value", l.text);
+          fail(l, k + 2, "nothing may follow `tol T`");
+        }
+        s.tol = eval(l, k + 1);
+        if (s.tol < 0) fail(l, k + 1, std::string("the tolerance must not be negative, got ") + format_number(s.tol));
+      }
+      prog_.steps.push_back(std::move(s));
     } else if (what == "error") {
       expect_count(l, 2, 2, "expect error GL_NO_ERROR|GL_INVALID_ENUM|...");
       Step s = step(l, StepKind::ExpectError);
@@ -541,7 +600,7 @@ class Loader {
       s.enabled = boolean(l, 3, "the state");
       prog_.steps.push_back(std::move(s));
     } else {
-      fail(l, 1, std::string("expected hash, pixel, error or enabled after `expect`, got `") + what + "`");
+      fail(l, 1, std::string("expected hash, pixel, image, error or enabled after `expect`, got `") + what + "`");
     }
   }
 
@@ -584,6 +643,7 @@ class Loader {
       throw TraceError(l.at(0), m, l.text);
     }
     std::size_t k = 1;
+    std::optional<std::size_t> out_arg;
     for (const auto& a : d.args) {
       const std::string what = std::string("`") + a.name + "` of " + d.name;
       ArgValue v;
@@ -601,6 +661,15 @@ class Loader {
           auto it = resources_.find(l.tok[k].text);
           if (it == resources_.end()) fail(l, k, std::string("unknown image `") + l.tok[k].text + "` (define it with image, generate or table)");
           v.image = prog_.resources[it->second].image;
+          v.client_memory = prog_.resources[it->second].client_memory;
+          ++k;
+          break;
+        }
+        case ArgKind::OutImage: {
+          if (l.tok[k].quoted || !is_identifier(l.tok[k].text))
+            fail(l, k, std::string("bad image name `") + l.tok[k].text + "` (letters, digits and _, not starting with a digit)");
+          v.client_memory = true;
+          out_arg = s.args.size();
           ++k;
           break;
         }
@@ -615,7 +684,49 @@ class Loader {
       }
       s.args.push_back(std::move(v));
     }
+    if (d.check)
+      if (auto problem = d.check(s.args)) throw TraceError(s.args.at(problem->arg).where, problem->message, l.text);
+    if (out_arg) declare_client_memory(l, d, s.args, *out_arg);
     prog_.steps.push_back(std::move(s));
+  }
+
+  // The client memory an OutImage argument names: declared by the first call, and
+  // the same shape for every later call writing it.
+  void declare_client_memory(const Line& l, const CommandDef& d, std::vector<ArgValue>& args, std::size_t k) {
+    ArgValue& v = args[k];
+    if (!d.out_shape) throw BindError(d.name + ": an OutImage argument needs writes_image()");
+    Image im = d.out_shape(args);
+    const long long px = static_cast<long long>(im.width) * im.height;
+    if (px > opt_.max_pixels)
+      throw TraceError(v.where, cat("image size ", std::to_string(im.width), "x", std::to_string(im.height),
+                                    " exceeds the limit of ", std::to_string(opt_.max_pixels), " pixels"), l.text);
+    auto describe = [](const Image& i) {
+      const char* t = i.type == SampleType::U8 ? "8-bit" : i.type == SampleType::U16 ? "16-bit" : "float";
+      return cat(std::to_string(i.width), "x", std::to_string(i.height), " ", t, " with ", std::to_string(i.channels),
+                 " channel", i.channels == 1 ? "" : "s");
+    };
+    if (auto it = resources_.find(v.text); it != resources_.end()) {
+      const Resource& r = prog_.resources[it->second];
+      if (!r.client_memory)
+        throw TraceError(v.where, cat("image `", v.text, "` (", r.kind, " at ", r.where.str(), ") is not client memory ", d.name,
+                                      " may write; name a new image"), l.text);
+      const Image& old = *r.image;
+      if (old.width != im.width || old.height != im.height || old.channels != im.channels || old.type != im.type)
+        throw TraceError(v.where, cat("client image `", v.text, "` is ", describe(old), " (declared at ", r.where.str(), "); ",
+                                      d.name, " here writes ", describe(im)), l.text);
+      v.image = r.image;
+      return;
+    }
+    Resource r;
+    r.name = v.text;
+    r.kind = "readback";
+    r.source = d.name;
+    r.where = v.where;
+    r.client_memory = true;
+    r.image = std::make_shared<const Image>(std::move(im));
+    v.image = r.image;
+    resources_[r.name] = prog_.resources.size();
+    prog_.resources.push_back(std::move(r));
   }
 
   double to_float32(const Line& l, std::size_t k, const std::string& what, double v) const {

@@ -28,7 +28,7 @@ inline constexpr long long kMaxTraceLines = 1000000;         // all files togeth
 inline constexpr std::uintmax_t kMaxTraceTotalBytes = 64u << 20;  // all files together, includes expanded
 inline constexpr int kMaxTableWidth = 65536;
 
-enum class StepKind { Call, Dump, Hash, ExpectHash, ExpectPixel, ExpectError, ExpectEnabled };
+enum class StepKind { Call, Dump, DumpImage, Hash, ExpectHash, ExpectPixel, ExpectImage, ExpectError, ExpectEnabled };
 
 struct Step {
   StepKind kind = StepKind::Call;
@@ -38,11 +38,12 @@ struct Step {
   const CommandDef* def = nullptr;  // Call
   std::vector<ArgValue> args;       // Call
   BufferKind buffer = BufferKind::Color;  // Dump, Hash, ExpectHash, ExpectPixel
-  std::string file;                       // Dump: path relative to the output directory
+  std::string file;                       // Dump, DumpImage: path relative to the output directory
+  ArgValue image;                         // DumpImage, ExpectImage: the client image (text = its name)
   std::uint64_t hash = 0;                 // ExpectHash
-  int x = 0, y = 0;                       // ExpectPixel
-  std::vector<double> values;             // ExpectPixel: 4 for color, 1 otherwise
-  double tol = 0;                         // ExpectPixel
+  int x = 0, y = 0;                       // ExpectPixel, ExpectImage
+  std::vector<double> values;             // ExpectPixel: 4 for color, 1 otherwise; ExpectImage: one per channel
+  double tol = 0;                         // ExpectPixel, ExpectImage
   GLenum error = gl::NO_ERROR;            // ExpectError; ExpectEnabled: the capability
   bool enabled = false;                   // ExpectEnabled
   bool is_pass() const { return kind == StepKind::Call && def && def->is_pass; }
@@ -59,8 +60,9 @@ struct Param {
 
 struct Resource {
   std::string name;
-  std::string kind;    // "image", "generate", "table"
-  std::string source;  // file path, generator name, or table expressions
+  std::string kind;    // "image", "generate", "table", "readback"
+  std::string source;  // file path, generator name, table expressions, or the writing command
+  bool client_memory = false;  // written while the trace runs (glReadPixels); `image` is its zero-filled start
   SourceLoc where;
   std::shared_ptr<const Image> image;
 };

@@ -208,10 +208,10 @@ TEST_CASE("trace load: outputs") {
   CHECK(load_error(V + "expect pixel 0 0 alpha 1 1\n") == "t.trace:2:26: too many values: alpha has 1");
   CHECK(load_error(V + "expect pixel 0 0 alpha 1 tol\n") == "t.trace:2:29: `tol` needs a value");
   CHECK(load_error(V + "expect pixel 0 0 alpha 1 tol -1\n") == "t.trace:2:30: the tolerance must not be negative, got -1");
-  CHECK(load_error(V + "expect frobs\n") == "t.trace:2:8: expected hash, pixel, error or enabled after `expect`, got `frobs`");
+  CHECK(load_error(V + "expect frobs\n") == "t.trace:2:8: expected hash, pixel, image, error or enabled after `expect`, got `frobs`");
   CHECK(load_error(V + "expect error GL_FROB\n") == "t.trace:2:14: unknown GL enum `GL_FROB`");
   CHECK(load_error(V + "expect enabled GL_SCISSOR_TEST 2\n") == "t.trace:2:32: expected 0, 1, GL_TRUE or GL_FALSE for the state, got `2`");
-  CHECK(load_error(V + "expect\n") == "t.trace:2:7: `expect` needs what to check: hash, pixel, error or enabled");
+  CHECK(load_error(V + "expect\n") == "t.trace:2:7: `expect` needs what to check: hash, pixel, image, error or enabled");
 }
 
 TEST_CASE("trace load: files, includes and cycles") {
