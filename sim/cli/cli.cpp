@@ -33,6 +33,8 @@ const std::vector<Subcommand>& subcommands() {
       diff_command(),
       compare_command(),
       info_command(),
+      paper_report_command(),
+      paper_mesh_command(),
       planned("bench", "run time against error, and per-stage throughput", "issues #9, #10"),
       bumpshadow_command(),
       profiles_command(),

@@ -37,5 +37,7 @@ Subcommand replay_command();
 Subcommand diff_command();
 Subcommand compare_command();
 Subcommand info_command();
+Subcommand paper_report_command();
+Subcommand paper_mesh_command();
 
 }  // namespace ffsim::cli

@@ -29,6 +29,13 @@ class GeneratorArgs {
   long long integer(const std::string& key, long long fallback, long long min, long long max);
   // One of `allowed` (the first is the default when the key is absent).
   std::string word(const std::string& key, const std::vector<std::string>& allowed);
+  // The value's text as written (a path, a name), or `fallback` when absent.
+  std::string text(const std::string& key, const std::string& fallback);
+  bool has(const std::string& key) const { return values_.count(key) != 0; }
+  // Where the key's value stands (for messages about it); {} when absent.
+  SourceLoc where(const std::string& key) const;
+  const std::string& line() const { return line_; }
+  long long max_pixels() const { return max_pixels_; }
   // A width x height pair within the trace's pixel limit.
   std::pair<int, int> size(const std::string& wkey, const std::string& hkey, int fallback);
   // Throws for keys no read asked for.
