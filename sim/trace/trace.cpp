@@ -516,6 +516,16 @@ class Loader {
   void expect(const Line& l) {
     if (l.tok.size() < 2) throw TraceError(l.end(), "`expect` needs what to check: hash, pixel, image, error or enabled", l.text);
     const std::string& what = l.tok[1].text;
+    // The optional `tol T` that ends `expect pixel` and `expect image`, starting at token k.
+    auto read_tolerance = [&](std::size_t k, Step& s) {
+      if (k >= l.tok.size()) return;
+      if (k + 2 != l.tok.size()) {
+        if (k + 1 == l.tok.size()) throw TraceError(l.end(), "`tol` needs a value", l.text);
+        fail(l, k + 2, "nothing may follow `tol T`");
+      }
+      s.tol = eval(l, k + 1);
+      if (s.tol < 0) fail(l, k + 1, std::string("the tolerance must not be negative, got ") + format_number(s.tol));
+    };
     if (what == "hash") {
       expect_count(l, 3, 3, "expect hash color|alpha|stencil|depth HEX");
       Step s = step(l, StepKind::ExpectHash);
@@ -543,14 +553,7 @@ class Loader {
                          std::string("expected ") + std::to_string(want) + " value" + std::string(want > 1 ? "s" : "") + " for " +
                              buffer_kind_name(s.buffer) + ", got " + std::to_string(s.values.size()),
                          l.text);
-      if (k < l.tok.size()) {
-        if (k + 2 != l.tok.size()) {
-          if (k + 1 == l.tok.size()) throw TraceError(l.end(), "`tol` needs a value", l.text);
-          fail(l, k + 2, "nothing may follow `tol T`");
-        }
-        s.tol = eval(l, k + 1);
-        if (s.tol < 0) fail(l, k + 1, std::string("the tolerance must not be negative, got ") + format_number(s.tol));
-      }
+      read_tolerance(k, s);
       prog_.steps.push_back(std::move(s));
     } else if (what == "image") {
       if (l.tok.size() < 6) throw TraceError(l.end(), "`expect image` needs NAME X Y VALUES...: expect image NAME X Y V... [tol T]", l.text);
@@ -579,14 +582,7 @@ class Loader {
                          cat("expected ", std::to_string(want), " value", want > 1 ? "s" : "", " for image `", r.name, "`, got ",
                              std::to_string(s.values.size())),
                          l.text);
-      if (k < l.tok.size()) {
-        if (k + 2 != l.tok.size()) {
-          if (k + 1 == l.tok.size()) throw TraceError(l.end(), "`tol` needs a value", l.text);
-          fail(l, k + 2, "nothing may follow `tol T`");
-        }
-        s.tol = eval(l, k + 1);
-        if (s.tol < 0) fail(l, k + 1, std::string("the tolerance must not be negative, got ") + format_number(s.tol));
-      }
+      read_tolerance(k, s);
       prog_.steps.push_back(std::move(s));
     } else if (what == "error") {
       expect_count(l, 2, 2, "expect error GL_NO_ERROR|GL_INVALID_ENUM|...");
