@@ -54,17 +54,10 @@ HeightField::HeightField(int width, int height, std::vector<double> heights, Bor
 double HeightField::block_max(int x, int y) const {
   // Wrap: the window of x mod w holds the same texels. Clamp: the window of the
   // clamped coordinate contains the clamped image of the window of x.
-  if (border_ == Border::Wrap) {
-    x = ((x % w_) + w_) % w_;
-    y = ((y % h_) + h_) % h_;
-  } else {
-    x = std::clamp(x, 0, w_ - 1);
-    y = std::clamp(y, 0, h_ - 1);
-  }
-  return block_[static_cast<std::size_t>(y) * w_ + x];
+  return block_[border_index(x, y)];
 }
 
-double HeightField::at(int x, int y) const {
+std::size_t HeightField::border_index(int x, int y) const {
   if (border_ == Border::Wrap) {
     x = ((x % w_) + w_) % w_;
     y = ((y % h_) + h_) % h_;
@@ -72,8 +65,10 @@ double HeightField::at(int x, int y) const {
     x = std::clamp(x, 0, w_ - 1);
     y = std::clamp(y, 0, h_ - 1);
   }
-  return z_[static_cast<std::size_t>(y) * w_ + x];
+  return static_cast<std::size_t>(y) * w_ + x;
 }
+
+double HeightField::at(int x, int y) const { return z_[border_index(x, y)]; }
 
 double HeightField::sample(double x, double y) const {
   const double fx0 = std::floor(x), fy0 = std::floor(y);

@@ -54,6 +54,8 @@ class HeightField {
   HeightField scaled(double s) const;
 
  private:
+  // Row-major index of (x, y) after the border rule (wrap or clamp).
+  std::size_t border_index(int x, int y) const;
   int w_, h_;
   std::vector<double> z_;
   Border border_;

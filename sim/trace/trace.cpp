@@ -482,19 +482,25 @@ class Loader {
     return p.lexically_normal().string();
   }
 
+  // The client image named by token k, as an Image argument of step `arg`.
+  const Resource& image_argument(const Line& l, std::size_t k, ArgValue& arg) {
+    auto it = resources_.find(l.tok[k].text);
+    if (it == resources_.end())
+      fail(l, k, std::string("unknown image `") + l.tok[k].text + "` (define it with image, generate, table or glReadPixels)");
+    const Resource& r = prog_.resources[it->second];
+    arg.kind = ArgKind::Image;
+    arg.text = r.name;
+    arg.where = l.at(k);
+    arg.image = r.image;
+    arg.client_memory = r.client_memory;
+    return r;
+  }
+
   void dump(const Line& l) {
     if (l.tok.size() >= 2 && l.tok[1].text == "image") {
       expect_count(l, 3, 3, "dump image NAME FILE");
       Step s = step(l, StepKind::DumpImage);
-      auto it = resources_.find(l.tok[2].text);
-      if (it == resources_.end())
-        fail(l, 2, std::string("unknown image `") + l.tok[2].text + "` (define it with image, generate, table or glReadPixels)");
-      const Resource& r = prog_.resources[it->second];
-      s.image.kind = ArgKind::Image;
-      s.image.text = r.name;
-      s.image.where = l.at(2);
-      s.image.image = r.image;
-      s.image.client_memory = r.client_memory;
+      image_argument(l, 2, s.image);
       s.file = dump_file(l, 3);
       prog_.steps.push_back(std::move(s));
       return;
@@ -558,15 +564,7 @@ class Loader {
     } else if (what == "image") {
       if (l.tok.size() < 6) throw TraceError(l.end(), "`expect image` needs NAME X Y VALUES...: expect image NAME X Y V... [tol T]", l.text);
       Step s = step(l, StepKind::ExpectImage);
-      auto it = resources_.find(l.tok[2].text);
-      if (it == resources_.end())
-        fail(l, 2, std::string("unknown image `") + l.tok[2].text + "` (define it with image, generate, table or glReadPixels)");
-      const Resource& r = prog_.resources[it->second];
-      s.image.kind = ArgKind::Image;
-      s.image.text = r.name;
-      s.image.where = l.at(2);
-      s.image.image = r.image;
-      s.image.client_memory = r.client_memory;
+      const Resource& r = image_argument(l, 2, s.image);
       const Image& im = *r.image;
       if (im.width < 1 || im.height < 1) fail(l, 2, std::string("image `") + r.name + "` has no pixels");
       s.x = static_cast<int>(eval_int(l, 3, "x", 0, im.width - 1));
