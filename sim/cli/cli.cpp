@@ -4,29 +4,6 @@
 
 namespace ffsim::cli {
 
-namespace {
-
-// Subcommands whose implementation lands with a later issue. They exist so the
-// command structure is stable; calling one says which issue provides it.
-Subcommand planned(std::string name, std::string summary, std::string issue) {
-  Subcommand s;
-  s.name = name;
-  s.summary = summary + " [" + issue + "]";
-  s.usage = "usage: ffsim " + name + " ...\n\n" + summary + ".\nProvided by " + issue +
-            "; this build does not include it yet.\n";
-  s.run = [name, issue](const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-    if (wants_help(args)) {
-      out << "ffsim " << name << ": provided by " << issue << "; not in this build yet\n";
-      return 0;
-    }
-    err << "ffsim " << name << ": not in this build yet (" << issue << ")\n";
-    return 2;
-  };
-  return s;
-}
-
-}  // namespace
-
 const std::vector<Subcommand>& subcommands() {
   static const std::vector<Subcommand> all = {
       replay_command(),
@@ -35,7 +12,8 @@ const std::vector<Subcommand>& subcommands() {
       info_command(),
       paper_report_command(),
       paper_mesh_command(),
-      planned("bench", "run time against error, and per-stage throughput", "issues #9, #10"),
+      bench_command(),
+      stress_command(),
       bumpshadow_command(),
       profiles_command(),
       demo_command(),

@@ -39,5 +39,7 @@ Subcommand compare_command();
 Subcommand info_command();
 Subcommand paper_report_command();
 Subcommand paper_mesh_command();
+Subcommand bench_command();
+Subcommand stress_command();
 
 }  // namespace ffsim::cli
