@@ -367,6 +367,9 @@ class Context {
   const ProbeLog& probe() const { return probe_; }
   // "color codes (...) = (...), stencil 3, depth 16777215" at (x, y), for probe records.
   std::string probe_describe_buffers(int x, int y) const;
+  // Fragments that have entered the per-fragment operations since construction
+  // (every write_fragments span; `ffsim bench --perf` divides bytes and time by it).
+  std::uint64_t fragments_written() const { return fragments_written_; }
 
 
  private:
@@ -497,6 +500,7 @@ class Context {
   // ==== [issue 6] state ====
   int threads_ = 1;
   ProbeLog probe_;
+  std::uint64_t fragments_written_ = 0;
 
 };
 
