@@ -49,6 +49,7 @@ struct Options {
   std::string traces_dir = "traces";
   std::string out_dir = "docs/results";
   int repeat = 7;
+  int stage_size = 0;  // 0: 1024 (256 with --quick)
   bool stages = true, traces = true, scaling = true, threads = true;
   std::vector<int> thread_counts;  // empty: 1 .. hardware threads
 };
@@ -270,6 +271,12 @@ int parse_args(const std::vector<std::string>& args, Options& o, std::ostream& e
       if (!v || std::sscanf(v->c_str(), "%d", &n) != 1 || n < 1 || n > 1000)
         return cli::usage_error(err, "bench --perf", "--repeat expects 1..1000");
       o.repeat = n;
+    } else if (a == "--size") {
+      const std::string* v = value();
+      int n = 0;
+      if (!v || std::sscanf(v->c_str(), "%d", &n) != 1 || n < 16 || n > 4096)
+        return cli::usage_error(err, "bench --perf", "--size expects 16..4096");
+      o.stage_size = n;
     } else if (a == "--only") {
       const std::string* v = value();
       if (!v || (*v != "stages" && *v != "traces" && *v != "scaling" && *v != "threads"))
@@ -298,10 +305,11 @@ int parse_args(const std::vector<std::string>& args, Options& o, std::ostream& e
 
 std::string perf_usage() {
   return "usage: ffsim bench --perf [--quick] [--only stages|traces|scaling|threads] [--repeat N]\n"
-         "                          [--threads 1,2,...] [--traces DIR] [--out DIR]\n\n"
+         "                          [--size N] [--threads 1,2,...] [--traces DIR] [--out DIR]\n\n"
          "Throughput (issue 10), each time beside its memory-bandwidth floor (the bytes the pass\n"
          "must read and write / this machine's measured copy bandwidth):\n"
-         "  stages   Mfragments/s of one pass on one core (set-ups in traces/perf/)\n"
+         "  stages   Mfragments/s of one pass on one core, N x N window (--size, default 1024;\n"
+         "           set-ups in traces/perf/)\n"
          "  traces   frames/s of kautz-imaging-hard, kautz-imaging-aa, kautz-geforce-aa on the\n"
          "           polygon at 512^2 and the terrain at 640x480, one thread\n"
          "  scaling  frames/s of the same traces at 256^2, 512^2, 1024^2, 2048^2\n"
@@ -335,7 +343,7 @@ int run_perf(const std::vector<std::string>& args, std::ostream& out, std::ostre
        << ". Median of " << o.repeat << " runs after a warm-up (min .. max in the CSV files).\n\n";
 
     if (o.stages) {
-      const int w = o.quick ? 256 : 1024;
+      const int w = o.stage_size ? o.stage_size : o.quick ? 256 : 1024;
       Csv csv(fs::path(o.out_dir) / "perf_stages.csv",
               "stage,window,fragments_per_pass,median_s,min_s,max_s,mfrag_per_s,bytes_per_fragment,floor_mfrag_per_s,"
               "fraction_of_floor");
