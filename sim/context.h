@@ -91,8 +91,14 @@ class Context {
 
   // ---- errors -------------------------------------------------------------
   GLenum getError();  // returns and clears the recorded error (GL_NO_ERROR if none)
-  void set_call_site(SourceLoc where) { call_site_ = std::move(where); }
-  const SourceLoc& call_site() const { return call_site_; }
+  void set_call_site(SourceLoc where) {
+    call_site_ = std::move(where);
+    call_site_ref_ = nullptr;
+  }
+  // The same without a copy (the trace executor, once per step): `where` must
+  // outlive every later GL call until the next set_call_site*.
+  void set_call_site_ref(const SourceLoc& where) { call_site_ref_ = &where; }
+  const SourceLoc& call_site() const { return call_site_ref_ ? *call_site_ref_ : call_site_; }
   void set_error_callback(std::function<void(const GLErrorEvent&)> cb) { on_error_ = std::move(cb); }
   const std::vector<GLErrorEvent>& error_log() const { return error_log_; }
   // Record an error raised by `function`; returns false so callers can write
@@ -380,6 +386,7 @@ class Context {
   Framebuffer fb_;
   GLenum pending_error_ = gl::NO_ERROR;
   SourceLoc call_site_;
+  const SourceLoc* call_site_ref_ = nullptr;  // set_call_site_ref; overrides call_site_
   std::function<void(const GLErrorEvent&)> on_error_;
   std::vector<GLErrorEvent> error_log_;
 

@@ -52,6 +52,8 @@ struct Options {
   int stage_size = 0;  // 0: 1024 (256 with --quick)
   bool stages = true, traces = true, scaling = true, threads = true;
   std::vector<int> thread_counts;  // empty: 1 .. hardware threads
+  std::string trace_file;          // --trace FILE: time this trace alone
+  Sets sets;                       // --set NAME=EXPR for --trace
 };
 
 // Median, minimum and maximum of repeated timings (seconds).
@@ -271,6 +273,18 @@ int parse_args(const std::vector<std::string>& args, Options& o, std::ostream& e
       if (!v || std::sscanf(v->c_str(), "%d", &n) != 1 || n < 1 || n > 1000)
         return cli::usage_error(err, "bench --perf", "--repeat expects 1..1000");
       o.repeat = n;
+    } else if (a == "--trace") {
+      const std::string* v = value();
+      if (!v) return cli::usage_error(err, "bench --perf", "--trace expects a trace file");
+      o.trace_file = *v;
+    } else if (a == "--set") {
+      const std::string* v = value();
+      if (!v) return cli::usage_error(err, "bench --perf", "--set expects NAME=EXPR");
+      try {
+        o.sets.push_back(trace::parse_set_argument(*v));
+      } catch (const std::exception& e) {
+        return cli::usage_error(err, "bench --perf", e.what());
+      }
     } else if (a == "--size") {
       const std::string* v = value();
       int n = 0;
@@ -301,11 +315,42 @@ int parse_args(const std::vector<std::string>& args, Options& o, std::ostream& e
   return 0;
 }
 
+// --trace FILE: load once, replay --repeat times on fresh Contexts (outputs off).
+int time_one_trace(const Options& o, std::ostream& out, std::ostream& err) {
+  try {
+    const trace::Program prog = load(o.trace_file, o.sets);
+    std::vector<double> times;
+    std::uint64_t fragments = 0;
+    std::ostringstream sink;
+    for (int r = 0; r <= o.repeat; ++r) {
+      Context ctx(prog.profile, prog.width, prog.height);
+      const auto t0 = Clock::now();
+      check(trace::run_program_on(ctx, prog, quiet_run(o.thread_counts.empty() ? 1 : o.thread_counts.front()), sink),
+            o.trace_file);
+      if (r > 0) times.push_back(seconds_since(t0));
+      fragments = ctx.fragments_written();
+    }
+    const Timing t = summarise(times);
+    out << o.trace_file << ": " << prog.width << "x" << prog.height << ", " << prog.pass_count() << " passes, "
+        << fragments << " fragments; median " << fixed(t.median * 1e3, 3) << " ms (" << fixed(t.min * 1e3, 3) << " .. "
+        << fixed(t.max * 1e3, 3) << "), " << fixed(1 / t.median, 1) << " frames/s, "
+        << fixed(static_cast<double>(fragments) / t.median / 1e6, 1) << " Mfragments/s\n";
+  } catch (const trace::TraceError& e) {
+    err << "ffsim bench --perf: " << e.where().str() << ": " << e.what() << "\n";
+    return 1;
+  } catch (const std::exception& e) {
+    err << "ffsim bench --perf: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
+
 }  // namespace
 
 std::string perf_usage() {
   return "usage: ffsim bench --perf [--quick] [--only stages|traces|scaling|threads] [--repeat N]\n"
-         "                          [--size N] [--threads 1,2,...] [--traces DIR] [--out DIR]\n\n"
+         "                          [--size N] [--threads 1,2,...] [--traces DIR] [--out DIR]\n"
+         "       ffsim bench --perf --trace FILE [--set NAME=EXPR ...] [--repeat N] [--threads N]\n\n"
          "Throughput (issue 10), each time beside its memory-bandwidth floor (the bytes the pass\n"
          "must read and write / this machine's measured copy bandwidth):\n"
          "  stages   Mfragments/s of one pass on one core, N x N window (--size, default 1024;\n"
@@ -317,7 +362,9 @@ std::string perf_usage() {
          "Median of --repeat N runs (default 7; 3 with --quick) after one warm-up, with min and max.\n"
          "--quick: 256^2 stages, the smaller sizes, about a minute. Writes perf_stages.csv,\n"
          "perf_traces.csv, perf_scaling.csv, perf_threads.csv and perf.md into --out\n"
-         "(default docs/results). Never fails on a number.\n";
+         "(default docs/results). Never fails on a number.\n"
+         "--trace FILE: replay one trace --repeat times (loaded once, outputs off) and print its\n"
+         "median frame time, frames/s and Mfragments/s.\n";
 }
 
 int run_perf(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
@@ -334,6 +381,7 @@ int run_perf(const std::vector<std::string>& args, std::ostream& out, std::ostre
     err << "ffsim bench --perf: cannot create `" << o.out_dir << "`: " << ec.message() << "\n";
     return 1;
   }
+  if (!o.trace_file.empty()) return time_one_trace(o, out, err);
   std::ostringstream md;
   try {
     const double bw = copy_bandwidth(std::size_t{o.quick ? 32u : 128u} << 20, 7);

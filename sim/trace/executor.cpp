@@ -59,7 +59,7 @@ class Runner {
         if (s.kind != StepKind::ExpectError) flush_errors();
         if (!r_.ok) break;
         if (!o_.outputs && s.kind != StepKind::Call && s.kind != StepKind::ExpectError) continue;
-        ctx.set_call_site(s.where);
+        ctx.set_call_site_ref(s.where);  // p_.steps outlives the run
         execute(ctx, s);
         ++r_.steps;
         collect_errors(ctx);
