@@ -99,6 +99,10 @@ std::vector<SweepPoint> error_sweep(const std::string& traces_dir, const std::st
     }
     const paper::ShadowStats st = paper::compare_masks(lit, ref_lit, covered);
     pt.disagree_vs_reference = st.false_lit + st.false_shadow;
+    const paper::ShadowStats si = paper::compare_masks(ideal_lit, ref_lit, covered);
+    pt.ideal_disagree_vs_reference = si.false_lit + si.false_shadow;
+    pt.alpha = a;
+    pt.covered = covered;
     out.push_back(pt);
   }
   return out;

@@ -42,6 +42,9 @@ struct SweepPoint {
   long long pixels = 0;
   long long differ_vs_ideal = 0;     // pixels whose lit verdict differs from ideal's
   long long disagree_vs_reference = 0;
+  long long ideal_disagree_vs_reference = 0;  // the same trace under `ideal`
+  std::vector<double> alpha;   // alpha.png values, row-major
+  std::vector<bool> covered;   // pixels the scene covers
 };
 // Runs kautz-reference, `stem` under `ideal` and `stem` under each profile.
 std::vector<SweepPoint> error_sweep(const std::string& traces_dir, const std::string& stem, const Sets& sets,
