@@ -330,3 +330,20 @@ TEST_CASE("trace load: the bytes read in all, includes expanded, are capped") {
   }
   fs::remove_all(d);
 }
+
+TEST_CASE("trace load: an enum argument may be an expression over parameters and GL_ names") {
+  const std::string t = V + "param filter 1\nglTexParameteri GL_TEXTURE_2D GL_TEXTURE_MIN_FILTER (GL_NEAREST+filter)\n";
+  Program p = load_trace_text(t, "t.trace", {});
+  REQUIRE(p.steps.size() == 1);
+  CHECK(p.steps[0].args[2].i == 0x2601);  // GL_LINEAR
+  LoadOptions opt;
+  opt.sets = {{"filter", "0"}};
+  p = load_trace_text(t, "t.trace", opt);
+  CHECK(p.steps[0].args[2].i == 0x2600);  // GL_NEAREST
+  // Parameters are looked up first; unknown GL_ names and fractions are errors at the argument.
+  CHECK(load_error(V + "glTexParameteri GL_TEXTURE_2D GL_TEXTURE_MIN_FILTER (GL_NOPE+1)\n").find("GL_NOPE") != std::string::npos);
+  CHECK(load_error(V + "glTexParameteri GL_TEXTURE_2D GL_TEXTURE_MIN_FILTER (GL_NEAREST+0.5)\n") ==
+        "t.trace:2:53: `param` of glTexParameteri must be an integer, got 9728.5");
+  // GL_ names are not known outside enum positions.
+  CHECK(load_error(V + "glClearColor (GL_NEAREST) 0 0 0\n").find("GL_NEAREST") != std::string::npos);
+}
