@@ -182,7 +182,7 @@ TEST_CASE("trace load: client images, generators and tables") {
   CHECK(load_error(V + "table a 2 x\ntable a 2 x\n") == "t.trace:3:7: image `a` is already defined at t.trace:2:7");
   CHECK(load_error(V + "table a 2 x 1 2 3 4\n") == "t.trace:2:19: too many arguments: table NAME WIDTH EXPR [EXPR EXPR EXPR]");
   CHECK(load_error(V + "table a 2\n") == "t.trace:2:10: `table` needs a name, a width and 1 to 4 expressions: table NAME WIDTH EXPR...");
-  CHECK(load_error(V + "generate h nonesuch\n") == "t.trace:2:12: unknown generator `nonesuch` (this build has bump, bumps, craters, fractal, hemisphere_bump, ridges or shadowmap)");
+  CHECK(load_error(V + "generate h nonesuch\n") == "t.trace:2:12: unknown generator `nonesuch` (this build has bump, bumps, craters, fractal, hemisphere_bump, horizon, ridges or shadowmap)");
   CHECK(load_error(V + "generate h hemisphere_bump radius\n") == "t.trace:2:28: expected key=value, got `radius`");
   CHECK(load_error(V + "generate h hemisphere_bump colour=3\n") == "t.trace:2:28: unknown key `colour`");
   CHECK(load_error(V + "generate h hemisphere_bump border=mirror\n") == "t.trace:2:35: `border` must be clamp or wrap, got `mirror`");
