@@ -171,8 +171,9 @@ void trace_case(CaseOutcome& c, bs::SplitMix64& rng, const CaseOptions& o, std::
   if (v) *v << c.summary << "\n";
   const TraceRun r1 = run_paper_trace(o.traces_dir, stem, sets, prof, 1);
   if (!r1.ok) {
-    // The traces refuse lights on or outside the unit circle with a clear error
-    // (lz = sqrt(1 - lx^2 - ly^2) of a negative number); anything else is a failure.
+    // The traces refuse lights outside the unit circle with a clear error (lz =
+    // sqrt of a radicand below -1e-12, traces/include/scene.trace; a radicand
+    // rounded just below 0 counts as 0); anything else is a failure.
     const bool outside = !(l.lx * l.lx + l.ly * l.ly < 1);
     if (v) *v << "  run failed: " << r1.error << "\n";
     if (!(outside || (l.lz != l.lz)) || r1.error.empty()) c.violations.push_back(std::string("trace failed: ") + r1.error);
