@@ -30,6 +30,7 @@
 #include <thread>
 
 #include "pipeline/gl/enums.h"
+#include "sim/bench/svg_plot.h"
 #include "sim/cli/cli.h"
 #include "sim/context.h"
 #include "sim/trace/executor.h"
@@ -244,6 +245,33 @@ constexpr double kTraceBytesPerFragment = 5;
 
 // ---- output --------------------------------------------------------------------
 
+// Frames/s against pixels (or threads), log-log, one series per (trace, scene), and
+// beside each series the ideal: linear in pixels (fps x pixels constant) or in
+// threads, from its first point.
+Plot scaling_plot(const std::vector<TraceRow>& rows, bool threads) {
+  Plot p;
+  p.title = threads ? "ffsim bench --perf: frames/s against worker threads (terrain)"
+                    : "ffsim bench --perf: frames/s against pixels per frame, one thread";
+  p.x_label = threads ? "worker threads" : "pixels per frame";
+  p.y_label = "frames per second";
+  p.x_log = p.y_log = true;
+  p.label_points = false;
+  for (const TraceRow& r : rows) {
+    const std::string name = r.c.trace + " " + r.c.scene;
+    const double x = threads ? r.c.threads : static_cast<double>(r.c.width) * r.c.height;
+    if (p.series.empty() || p.series.back().name != name) p.series.push_back({name, {}, ""});
+    p.series.back().points.push_back({x, 1.0 / r.t.median, name + ": " + fixed(1.0 / r.t.median, 1) + " fps", false});
+  }
+  for (const PlotSeries& s : p.series) {
+    if (s.points.size() < 2) continue;
+    const PlotPoint& a = s.points.front();
+    PlotLine l{"linear scaling from " + s.name, {}, "#bbbbbb"};
+    for (const PlotPoint& q : s.points) l.points.emplace_back(q.x, threads ? a.y * q.x / a.x : a.y * a.x / q.x);
+    p.lines.push_back(l);
+  }
+  return p;
+}
+
 struct Csv {
   std::ofstream f;
   Csv(const fs::path& p, const std::string& header) : f(p) { f << header << "\n"; }
@@ -383,6 +411,7 @@ int run_perf(const std::vector<std::string>& args, std::ostream& out, std::ostre
   }
   if (!o.trace_file.empty()) return time_one_trace(o, out, err);
   std::ostringstream md;
+  std::vector<TraceRow> rows, thread_rows;
   try {
     const double bw = copy_bandwidth(std::size_t{o.quick ? 32u : 128u} << 20, 7);
     out << "copy bandwidth (read + write): " << fixed(bw / 1e9, 2) << " GB/s; hardware threads: " << hw << "\n\n";
@@ -454,18 +483,29 @@ int run_perf(const std::vector<std::string>& args, std::ostream& out, std::ostre
       const std::vector<int> sizes = o.quick ? std::vector<int>{128, 256} : std::vector<int>{256, 512, 1024, 2048};
       for (const std::string& t : traces)
         for (const char* scene : {"polygon", "terrain"})
-          for (int s : sizes) frame_line(run_trace_case(o, {t, scene, s, s, 1}, s >= 2048 ? std::max(1, o.repeat / 2) : o.repeat), csv, "scaling");
+          for (int s : sizes) {
+            rows.push_back(run_trace_case(o, {t, scene, s, s, 1}, s >= 2048 ? std::max(1, o.repeat / 2) : o.repeat));
+            frame_line(rows.back(), csv, "scaling");
+          }
       out << "\n";
       md << "\n" << floor_note;
+      const std::string svg = "perf_scaling.svg";
+      write_svg((fs::path(o.out_dir) / svg).string(), scaling_plot(rows, false));
+      md << "![frames per second against pixels](" << svg << ")\n\n";
     }
     if (o.threads) {
       Csv csv(fs::path(o.out_dir) / "perf_threads.csv", csv_header);
       table_head("Scaling with worker threads (`--threads`)");
       for (const std::string& t : traces)
-        for (int n : o.thread_counts)
-          frame_line(run_trace_case(o, {t, "terrain", o.quick ? 320 : 640, o.quick ? 240 : 480, n}, o.repeat), csv, "threads");
+        for (int n : o.thread_counts) {
+          thread_rows.push_back(run_trace_case(o, {t, "terrain", o.quick ? 320 : 640, o.quick ? 240 : 480, n}, o.repeat));
+          frame_line(thread_rows.back(), csv, "threads");
+        }
       out << "\n";
       md << "\n" << floor_note;
+      const std::string svg = "perf_threads.svg";
+      write_svg((fs::path(o.out_dir) / svg).string(), scaling_plot(thread_rows, true));
+      md << "![frames per second against threads](" << svg << ")\n\n";
     }
   } catch (const std::exception& e) {
     err << "ffsim bench --perf: " << e.what() << "\n";
