@@ -77,6 +77,10 @@ struct TextureUnitBinding {
 
 inline constexpr int kMaxTextureUnits = 4;
 
+struct WindowVertex;       // sim/draw_span.h
+struct TriangleCoverage;   // pipeline/raster/triangle.h
+struct CoverageRun;
+
 class Context {
  public:
   // Throws FramebufferError for an impossible framebuffer size.
@@ -369,6 +373,17 @@ class Context {
   std::string probe_describe_buffers(int x, int y) const;
 
 
+  // ==== [issue 10] performance ====
+  // Specialised span paths (docs/performance.md): a run of fragments is shaded
+  // at once (SoA interpolation by exact DDA, span texture sampling, integer
+  // texture-environment and combiner kernels). Off: every fragment takes the
+  // generic per-fragment path. Results are identical either way; the
+  // tests/*/test_fast_*.cpp tests draw random scenes both ways and compare.
+  void set_fast_paths(bool on) { fast_paths_ = on; }
+  bool fast_paths() const { return fast_paths_; }
+  // Runs of fragments the span path has shaded so far (tests check it is taken).
+  std::uint64_t fast_runs() const { return fast_runs_; }
+
  private:
   bool set_capability(GLenum cap, bool on, const char* function);
   MatrixStack& current_stack();
@@ -497,6 +512,23 @@ class Context {
   // ==== [issue 6] state ====
   int threads_ = 1;
   ProbeLog probe_;
+
+  // ==== [issue 10] state ====
+  bool fast_paths_ = true;
+  std::uint64_t fast_runs_ = 0;
+  // Scratch of the span path, reused from run to run (sim/draw_span.cpp).
+  struct SpanScratch {
+    std::vector<std::uint16_t> primary, secondary;
+    std::array<std::vector<std::uint16_t>, kMaxTextureUnits> texels;
+    std::vector<double> s, t;
+    std::vector<std::uint32_t> lane;
+  };
+  SpanScratch span_scratch_;
+  // A run shaded at once into `span` (fixed profiles); false when the run needs
+  // the generic per-fragment path (float profiles, λ needed, the probe inside it).
+  bool shade_run_fast(const ShadingState& st, const ShadingPlan& plan, const std::array<const WindowVertex*, 3>& tv,
+                      const TriangleCoverage& cov, const CoverageRun& run, bool flat, bool shade, FragmentSpan& span,
+                      SpanScratch& scratch);
 
 };
 

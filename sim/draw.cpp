@@ -19,18 +19,11 @@
 #include "sim/probe.h"
 #include "pipeline/raster/triangle.h"
 #include "sim/context.h"
+#include "sim/draw_span.h"
 
 namespace ffsim {
 
 namespace {
-
-struct WindowVertex {
-  SnappedVertex p;
-  std::array<std::uint32_t, 4> color_code{}, secondary_code{};
-  std::array<double, 4> color{}, secondary{};
-  std::uint32_t depth = 0;
-  std::array<std::array<double, 3>, kMaxTextureUnits> tcw{};  // s/w, t/w, q/w
-};
 
 double to_color_value(double v, Arithmetic a) {
   return a == Arithmetic::Float32 ? static_cast<double>(static_cast<float>(v)) : v;
@@ -230,18 +223,24 @@ void Context::draw_polygon(std::vector<ClipVertex> poly, std::size_t provoking, 
     return static_cast<int>(std::clamp<std::int64_t>(std::int64_t{a} - origin, -(std::int64_t{1} << 30), std::int64_t{1} << 30));
   };
   const int cx0 = rel(0, vx), cy0 = rel(0, vy), cx1 = rel(fb_.width(), vx), cy1 = rel(fb_.height(), vy);
+  FragmentSpan span;  // reused from run to run
   for (std::size_t i = 1; i + 1 < wv.size(); ++i) {
     const std::array<const WindowVertex*, 3> tv{&wv[0], &wv[i], &wv[i + 1]};
     auto emit = [&](const TriangleCoverage& cov, const CoverageRun& run) {
       const std::int64_t A = cov.area;
       const int n = static_cast<int>(run.weight.size());
-      FragmentSpan span;
       span.y = run.y + vy;
       span.x0 = run.x0 + vx;
       span.count = n;
       if (arith == Arithmetic::Fixed) span.codes.resize(4 * static_cast<std::size_t>(n));
       else span.values.resize(4 * static_cast<std::size_t>(n));
       if (has_depth) span.depth.resize(static_cast<std::size_t>(n));
+      // The span path (sim/draw_span.cpp), or every fragment on its own below.
+      if (fast_paths_ && shade_run_fast(st, plan, tv, cov, run, flat, shade, span, span_scratch_)) {
+        ++fast_runs_;
+        write_fragments(span);
+        return;
+      }
       for (int f = 0; f < n; ++f) {
         const auto& w = run.weight[static_cast<std::size_t>(f)];
         if (has_depth) span.depth[f] = interpolate_code(w, A, tv[0]->depth, tv[1]->depth, tv[2]->depth);

@@ -107,4 +107,46 @@ std::uint32_t interpolate_code(const std::array<std::int64_t, 3>& w, std::int64_
   return static_cast<std::uint32_t>((2 * num + area) / (2 * i128{area}));
 }
 
+void interpolate_code_run(const std::array<std::int64_t, 3>& w0, const std::array<std::int64_t, 3>& dwdx,
+                          std::int64_t area, std::uint32_t k0, std::uint32_t k1, std::uint32_t k2, int n,
+                          std::uint32_t* out) {
+  if (n <= 0) return;
+  __extension__ typedef __int128 i128;
+  const i128 D = 2 * i128{area};
+  const i128 x0 = 2 * (i128{w0[0]} * k0 + i128{w0[1]} * k1 + i128{w0[2]} * k2) + area;  // >= 0 inside
+  const i128 step = 2 * (i128{dwdx[0]} * k0 + i128{dwdx[1]} * k1 + i128{dwdx[2]} * k2);
+  // Floor division by D > 0 for both signs; remainders in [0, D).
+  auto floor_div = [&](i128 a, i128& rem) {
+    i128 q = a / D;
+    rem = a - q * D;
+    if (rem < 0) {
+      rem += D;
+      --q;
+    }
+    return q;
+  };
+  i128 r0 = 0, dr0 = 0;
+  const i128 q0 = floor_div(x0, r0);
+  if (n == 1) {  // no step (a one-fragment run of a sliver may have a huge gradient)
+    out[0] = static_cast<std::uint32_t>(q0);
+    return;
+  }
+  const i128 dq0 = floor_div(step, dr0);
+  // Every fragment of the run is inside the triangle, so every quotient is a
+  // code (< 2^32) and the remainders stay below D < 2^62: int64 suffices.
+  std::int64_t q = static_cast<std::int64_t>(q0), r = static_cast<std::int64_t>(r0);
+  const std::int64_t dq = static_cast<std::int64_t>(dq0), dr = static_cast<std::int64_t>(dr0);
+  const std::int64_t d = static_cast<std::int64_t>(D);
+  for (int i = 0;; ++i) {
+    out[i] = static_cast<std::uint32_t>(q);
+    if (i + 1 == n) break;
+    q += dq;
+    r += dr;
+    if (r >= d) {
+      r -= d;
+      ++q;
+    }
+  }
+}
+
 }  // namespace ffsim

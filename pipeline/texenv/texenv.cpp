@@ -1,6 +1,7 @@
 #include "pipeline/texenv/texenv.h"
 
 #include <algorithm>
+#include <type_traits>
 
 #include "pipeline/number/unorm.h"
 
@@ -253,6 +254,92 @@ Rgba texture_environment(const TexEnvState& env, const Rgba& previous, const Rgb
     out.value[c] = fmt.arith == Arithmetic::Float32 ? static_cast<double>(static_cast<float>(v)) : v;
   }
   return out;
+}
+
+namespace {
+
+enum class SpanOp : std::uint8_t { Keep, Texel, Mul, Decal, Blend, AddSat };
+
+template <std::uint32_t kM>
+void env_span_channels(const std::array<SpanOp, 4>& op, const std::array<std::uint32_t, 4>& cc, std::uint32_t m_rt,
+                       const std::uint16_t* prev, const std::uint16_t* tex, int n, std::uint16_t* out) {
+  using U = std::conditional_t<kM == 255, std::uint32_t, std::uint64_t>;
+  const U m = kM ? kM : m_rt;
+  // v = x / m^2 exactly; rounded half up once to the colour width: floor(v·m + 1/2).
+  auto round2 = [m](U x) { return static_cast<std::uint16_t>((2 * x + m) / (2 * m)); };
+  for (int c = 0; c < 4; ++c) {
+    const U k = cc[c];
+    switch (op[c]) {
+      case SpanOp::Keep:
+        if (out != prev)
+          for (int f = 0; f < n; ++f) out[4 * f + c] = prev[4 * f + c];
+        break;
+      case SpanOp::Texel:
+        for (int f = 0; f < n; ++f) out[4 * f + c] = tex[4 * f + c];
+        break;
+      case SpanOp::Mul:  // Cf·Ct
+        for (int f = 0; f < n; ++f) out[4 * f + c] = round2(U{prev[4 * f + c]} * tex[4 * f + c]);
+        break;
+      case SpanOp::Decal:  // Cf·(1 − At) + Ct·At
+        for (int f = 0; f < n; ++f) {
+          const U a = tex[4 * f + 3];
+          out[4 * f + c] = round2(U{prev[4 * f + c]} * (m - a) + U{tex[4 * f + c]} * a);
+        }
+        break;
+      case SpanOp::Blend:  // Cf·(1 − Ct) + Cc·Ct
+        for (int f = 0; f < n; ++f) {
+          const U t = tex[4 * f + c];
+          out[4 * f + c] = round2(U{prev[4 * f + c]} * (m - t) + k * t);
+        }
+        break;
+      case SpanOp::AddSat:  // min(1, Cf + Ct), exact on codes of one width
+        for (int f = 0; f < n; ++f) out[4 * f + c] = static_cast<std::uint16_t>(std::min<U>(U{prev[4 * f + c]} + tex[4 * f + c], m));
+        break;
+    }
+  }
+}
+
+}  // namespace
+
+bool texture_environment_span_fixed(const TexEnvState& env, BaseFormat base, int texel_bits,
+                                    const std::uint16_t* previous, const std::uint16_t* texel, int n,
+                                    const ColorFormat& fmt, std::uint16_t* out) {
+  if (!fmt.fixed() || texel_bits != fmt.bits || env.mode == gl::COMBINE) return false;
+  // The classic() table above, per channel.
+  const bool hc = has_color(base), ha = has_alpha(base);
+  std::array<SpanOp, 4> op{SpanOp::Keep, SpanOp::Keep, SpanOp::Keep, SpanOp::Keep};
+  auto rgb = [&](SpanOp o) { op[0] = op[1] = op[2] = o; };
+  switch (env.mode) {
+    case gl::REPLACE:
+      if (hc) rgb(SpanOp::Texel);
+      if (ha) op[3] = SpanOp::Texel;
+      break;
+    case gl::MODULATE:
+      if (hc) rgb(SpanOp::Mul);
+      if (ha) op[3] = SpanOp::Mul;
+      break;
+    case gl::DECAL:
+      if (base == BaseFormat::RGB) rgb(SpanOp::Texel);
+      if (base == BaseFormat::RGBA) rgb(SpanOp::Decal);
+      break;
+    case gl::BLEND:
+      if (hc) rgb(SpanOp::Blend);
+      if (base == BaseFormat::Intensity) op[3] = SpanOp::Blend;
+      else if (ha) op[3] = SpanOp::Mul;
+      break;
+    case gl::ADD:
+      if (hc) rgb(SpanOp::AddSat);
+      if (base == BaseFormat::Intensity) op[3] = SpanOp::AddSat;
+      else if (ha) op[3] = SpanOp::Mul;
+      break;
+    default: return false;
+  }
+  std::array<std::uint32_t, 4> cc{};
+  for (int c = 0; c < 4; ++c) cc[c] = unorm_from_double(env.color[c], fmt.bits);
+  const std::uint32_t m = unorm_max(fmt.bits);
+  if (m == 255) env_span_channels<255>(op, cc, m, previous, texel, n, out);
+  else env_span_channels<0>(op, cc, m, previous, texel, n, out);
+  return true;
 }
 
 Rgba color_sum(const Rgba& primary, const Rgba& secondary, const ColorFormat& fmt) {
