@@ -11,6 +11,7 @@
 //     codes; or the register combiners' shade_span over the whole run.
 #include <algorithm>
 
+#include "pipeline/combiners/combiner_span.h"
 #include "pipeline/combiners/register_combiners.h"
 #include "pipeline/number/unorm.h"
 #include "sim/draw_span.h"
@@ -108,7 +109,8 @@ bool Context::shade_run_fast(const ShadingState& st, const ShadingPlan& plan,
         for (std::uint16_t& k : sc.texels[u]) k = static_cast<std::uint16_t>(unorm_convert(k, bits, profile_.texture_bits));
       in.texture[u] = sc.texels[u].data();
     }
-    combiners::shade_span(*cp, in, {0, 0, 0, 0}, out);  // fog not modelled (combine_fragment)
+    const std::array<double, 4> fog{0, 0, 0, 0};  // fog not modelled (combine_fragment)
+    if (!combiners::shade_span_fast(*cp, in, fog, out)) combiners::shade_span(*cp, in, fog, out);
     return true;
   }
 
