@@ -68,32 +68,35 @@ struct Kernel {
     }
     P ab[3][kChunk], cd[3][kChunk];
     auto products = [&](int a, int b, bool dot, P(&r)[3][kChunk]) {
-      auto prod = [&](P x, P y) { return per_product ? four_m * round_away(x * y, four_m) : x * y; };
-      if (L == 3 && dot) {
-        for (int i = 0; i < n; ++i) {
-          P t = 0;
-          for (int l = 0; l < 3; ++l) t += prod(mv[a][l][i], mv[b][l][i]);
-          r[0][i] = r[1][i] = r[2][i] = t;
-        }
-      } else {
+      if (per_product)  // every product first rounded to the register grid
         for (int l = 0; l < L; ++l)
-          for (int i = 0; i < n; ++i) r[l][i] = prod(mv[a][l][i], mv[b][l][i]);
-      }
+          for (int i = 0; i < n; ++i) r[l][i] = four_m * round_away(mv[a][l][i] * mv[b][l][i], four_m);
+      else
+        for (int l = 0; l < L; ++l)
+          for (int i = 0; i < n; ++i) r[l][i] = mv[a][l][i] * mv[b][l][i];
+      if (L == 3 && dot)  // the sum of the three lane products, broadcast
+        for (int i = 0; i < n; ++i) r[0][i] = r[1][i] = r[2][i] = r[0][i] + r[1][i] + r[2][i];
     };
     if (p.need_ab) products(0, 1, p.ab_dot, ab);
     if (p.need_cd) products(2, 3, p.cd_dot, cd);
     const std::int32_t* spare0_a = reg[kSpare0][3];
     const P scale2 = p.scale2, bias = p.bias ? two_m2 : 0;
+    // output_code: round((x + bias)·2·scale / 8M) half away, clamp to [−M, M].
+    auto code = [&](P x) { return static_cast<std::int32_t>(std::clamp(round_away((x - bias) * scale2, eight_m), -M, M)); };
     for (int o = 0; o < 3; ++o) {
       if (p.dest[static_cast<std::size_t>(o)] < 0) continue;
       for (int l = 0; l < L; ++l) {
         std::int32_t* d = out[o][l];
-        for (int i = 0; i < n; ++i) {
-          const bool mux_cd = 2 * P{spare0_a[i]} >= M;  // spare0.a >= 1/2, exact
-          const P x = o == 0 ? ab[l][i] : o == 1 ? cd[l][i] : p.mux ? (mux_cd ? cd[l][i] : ab[l][i]) : ab[l][i] + cd[l][i];
-          // output_code: round((x + bias)·2·scale / 8M) half away, clamp to [−M, M].
-          d[i] = static_cast<std::int32_t>(std::clamp(round_away((x - bias) * scale2, eight_m), -M, M));
-        }
+        const P* x_ab = ab[l];
+        const P* x_cd = cd[l];
+        if (o == 0)
+          for (int i = 0; i < n; ++i) d[i] = code(x_ab[i]);
+        else if (o == 1)
+          for (int i = 0; i < n; ++i) d[i] = code(x_cd[i]);
+        else if (p.mux)  // MUX: spare0.a >= 1/2 (exact: 2·spare0.a >= M) selects CD
+          for (int i = 0; i < n; ++i) d[i] = code(2 * P{spare0_a[i]} >= M ? x_cd[i] : x_ab[i]);
+        else
+          for (int i = 0; i < n; ++i) d[i] = code(x_ab[i] + x_cd[i]);
       }
     }
   }
@@ -112,39 +115,61 @@ struct Kernel {
         if (const int d = st.alpha.dest[static_cast<std::size_t>(o)]; d >= 0) std::copy_n(alpha[o][0], n, reg[d][3]);
   }
 
-  // final_combiner_fixed<Acc> for fragment i of the chunk.
-  void final(int i, std::uint16_t* o) const {
+  // final_combiner_fixed<Acc> over the chunk, variable by variable.
+  void final(int n, std::uint16_t* out) const {
     const PlannedFinal& f = plan.final;
-    const std::int64_t m = M(), m2 = m * m;
+    const std::int32_t Mi = M();
+    const std::int64_t m = Mi, m2 = m * m;
     const int color_bits = plan.config.color_bits;
     const Acc nmax = (Acc{1} << color_bits) - 1;
     const Acc m4 = Acc{m2} * m2;
-    auto final_reg = [&](const PlannedVar& v, int lane) -> std::int64_t {
-      const std::int32_t c = reg[v.reg][v.comp[static_cast<std::size_t>(lane)]][i];
-      return v.mapping == Mapping::UnsignedInvert ? M() - std::clamp(c, 0, M()) : std::max(c, 0);
+    // final_reg: UNSIGNED_INVERT 1 − clamp01, UNSIGNED_IDENTITY max(0, ·), in units of 1/M.
+    auto final_reg = [&](const PlannedVar& v, int lane, std::int64_t* r) {
+      const std::int32_t* c = reg[v.reg][v.comp[static_cast<std::size_t>(lane)]];
+      if (v.mapping == Mapping::UnsignedInvert)
+        for (int i = 0; i < n; ++i) r[i] = Mi - std::clamp(c[i], 0, Mi);
+      else
+        for (int i = 0; i < n; ++i) r[i] = std::max(c[i], 0);
     };
-    std::int64_t ef[3] = {}, sps[3] = {};
+    std::int64_t ef[3][kChunk], sps[3][kChunk], e[kChunk], fv[kChunk];
     if (f.need_ef)
-      for (int l = 0; l < 3; ++l) ef[l] = final_reg(f.var[4], l) * final_reg(f.var[5], l);
-    if (f.need_spare0_plus_secondary)
       for (int l = 0; l < 3; ++l) {
-        const std::int64_t s = std::int64_t{std::max(reg[kSpare0][l][i], 0)} + std::max(reg[kSecondaryColor][l][i], 0);
-        sps[l] = f.color_sum_clamp ? std::min(s, m) : s;
+        final_reg(f.var[4], l, e);
+        final_reg(f.var[5], l, fv);
+        for (int i = 0; i < n; ++i) ef[l][i] = e[i] * fv[i];
       }
-    auto wide = [&](const PlannedVar& v, int l) -> std::int64_t {  // units of 1/M^2
+    if (f.need_spare0_plus_secondary)
+      for (int l = 0; l < 3; ++l)
+        for (int i = 0; i < n; ++i) {
+          const std::int64_t s = std::int64_t{std::max(reg[kSpare0][l][i], 0)} + std::max(reg[kSecondaryColor][l][i], 0);
+          sps[l][i] = f.color_sum_clamp ? std::min(s, m) : s;
+        }
+    auto wide = [&](const PlannedVar& v, int l, std::int64_t* w) {  // units of 1/M^2
       const bool inv = v.mapping == Mapping::UnsignedInvert;
-      if (v.reg == kETimesF) return inv ? m2 - std::clamp(ef[l], std::int64_t{0}, m2) : std::max(ef[l], std::int64_t{0});
-      if (v.reg == kSpare0PlusSecondary) return inv ? m2 - std::min(sps[l] * m, m2) : sps[l] * m;
-      return final_reg(v, l) * m;
+      if (v.reg == kETimesF) {
+        for (int i = 0; i < n; ++i)
+          w[i] = inv ? m2 - std::clamp(ef[l][i], std::int64_t{0}, m2) : std::max(ef[l][i], std::int64_t{0});
+      } else if (v.reg == kSpare0PlusSecondary) {
+        for (int i = 0; i < n; ++i) w[i] = inv ? m2 - std::min(sps[l][i] * m, m2) : sps[l][i] * m;
+      } else {
+        final_reg(v, l, w);
+        for (int i = 0; i < n; ++i) w[i] *= m;
+      }
     };
+    std::int64_t a[kChunk], b[kChunk], c[kChunk], d[kChunk];
     for (int l = 0; l < 3; ++l) {
-      const Acc a = wide(f.var[0], l), b = wide(f.var[1], l), c = wide(f.var[2], l), d = wide(f.var[3], l);
-      Acc x = a * b + (Acc{m2} - a) * c + d * Acc{m2};
-      if (x > m4) x = m4;
-      o[l] = static_cast<std::uint16_t>((2 * x * nmax + m4) / (2 * m4));
+      wide(f.var[0], l, a);
+      wide(f.var[1], l, b);
+      wide(f.var[2], l, c);
+      wide(f.var[3], l, d);
+      for (int i = 0; i < n; ++i) {
+        Acc x = Acc{a[i]} * b[i] + (Acc{m2} - a[i]) * c[i] + Acc{d[i]} * Acc{m2};
+        if (x > m4) x = m4;
+        out[4 * i + l] = static_cast<std::uint16_t>((2 * x * nmax + m4) / (2 * m4));
+      }
     }
-    const std::int64_t g = final_reg(f.var[6], 0);
-    o[3] = static_cast<std::uint16_t>((2 * Acc{g} * nmax + m) / (2 * m));
+    final_reg(f.var[6], 0, e);
+    for (int i = 0; i < n; ++i) out[4 * i + 3] = static_cast<std::uint16_t>((2 * Acc{e[i]} * nmax + m) / (2 * m));
   }
 
   void run(const CombinerInputsFixed& in, const std::array<double, 4>& fog_color, std::uint16_t* out) {
@@ -187,7 +212,7 @@ struct Kernel {
         stage(st, per_product, n);
       }
       if (own_constants) set_constants(plan.constant_codes, n);  // RC2: the final combiner reads the global ones
-      for (int i = 0; i < n; ++i) final(i, out + 4 * (f0 + static_cast<std::size_t>(i)));
+      final(n, out + 4 * f0);
     }
   }
 };

@@ -74,28 +74,41 @@ TriangleCoverage rasterize_triangle(const std::array<SnappedVertex, 3>& vin, int
   y0 = std::max<std::int64_t>(y0, clip_y0);
   x1 = std::min<std::int64_t>(x1, clip_x1 - 1);
   y1 = std::min<std::int64_t>(y1, clip_y1 - 1);
+  // Each row's run is solved per edge instead of testing every pixel of the
+  // bounding box: along a row E_k(x) = A_k·x + C_k exactly (A_k = a_k·2^S), and
+  // "inside" is E_k >= t_k with t_k = 0 on an inclusive edge, 1 otherwise
+  // (integers), so each edge bounds x by one exact floor/ceil division. The run
+  // is the intersection: the same fragments and weights as evaluating every
+  // centre (tests/pipeline/test_fast_raster.cpp compares with that loop).
   CoverageRun run;
+  std::array<std::int64_t, 3> step{}, t{};
+  for (int k = 0; k < 3; ++k) {
+    step[k] = e[k].a * one;
+    t[k] = e[k].inclusive ? 0 : 1;
+  }
   for (std::int64_t y = y0; y <= y1; ++y) {
     const std::int64_t py = y * one + half;
-    run.weight.clear();
-    run.y = static_cast<int>(y);
-    for (std::int64_t x = x0; x <= x1; ++x) {
-      const std::int64_t px = x * one + half;
-      std::array<std::int64_t, 3> w{};
-      bool in = true;
-      for (int k = 0; k < 3 && in; ++k) {
-        const std::int64_t ek = e[k].a * px + e[k].b * py + e[k].c;
-        in = ek > 0 || (ek == 0 && e[k].inclusive);
-        w[idx[k]] = ek;
-      }
-      if (in) {
-        if (run.weight.empty()) run.x0 = static_cast<int>(x);
-        run.weight.push_back(w);
-      } else if (!run.weight.empty()) {
-        break;  // a triangle's row is one contiguous run
-      }
+    std::int64_t lo = x0, hi = x1;
+    std::array<std::int64_t, 3> c0{};  // E_k at x = 0 of this row
+    for (int k = 0; k < 3 && lo <= hi; ++k) {
+      c0[k] = e[k].a * half + e[k].b * py + e[k].c;
+      if (step[k] > 0) lo = std::max(lo, ceil_div(t[k] - c0[k], step[k]));
+      else if (step[k] < 0) hi = std::min(hi, floor_div(c0[k] - t[k], -step[k]));
+      else if (c0[k] < t[k]) hi = lo - 1;  // horizontal edge with the row outside
     }
-    if (!run.weight.empty()) emit(cov, run);
+    if (lo > hi) continue;
+    run.y = static_cast<int>(y);
+    run.x0 = static_cast<int>(lo);
+    run.weight.resize(static_cast<std::size_t>(hi - lo + 1));
+    std::array<std::int64_t, 3> w{};
+    for (int k = 0; k < 3; ++k) w[idx[k]] = step[k] * lo + c0[k];
+    std::array<std::int64_t, 3> dw{};
+    for (int k = 0; k < 3; ++k) dw[idx[k]] = step[k];
+    for (auto& wi : run.weight) {
+      wi = w;
+      for (int k = 0; k < 3; ++k) w[k] += dw[k];
+    }
+    emit(cov, run);
   }
   return cov;
 }

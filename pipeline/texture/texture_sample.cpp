@@ -385,43 +385,50 @@ struct SpanLevel {
   std::uint32_t one_code;
 };
 
-template <bool kLinear, bool kDirect>
+// U: the accumulator of the weighted sum; std::uint32_t when it cannot overflow
+// (texel bits + 2B <= 31), else std::uint64_t as in level_codes. Same value.
+// NC: stored components per texel (0: L.ncomp at run time).
+template <bool kLinear, bool kDirect, class U, int NC>
 void span_level(const SpanLevel& L, const double* s, const double* t, int n, std::uint16_t* out) {
   const TextureImage& im = *L.im;
   const TextureParams& p = L.tex->params;
-  const int nc = L.ncomp, b = im.border;
+  const int nc = NC ? NC : L.ncomp, b = im.border;
   const std::uint16_t* codes = im.codes.data();
   const std::size_t W = static_cast<std::size_t>(im.width);
-  auto texel = [&](int i, int j) -> std::array<std::uint32_t, 4> {
-    if constexpr (kDirect) {
-      const std::uint16_t* q = codes + ((static_cast<std::size_t>(j + b) * W) + static_cast<std::size_t>(i + b)) * nc;
-      std::array<std::uint32_t, 4> r{};
-      for (int c = 0; c < nc; ++c) r[c] = q[c];
-      return r;
-    } else {
-      return fetch(im, 2, i, j, L.border);
-    }
+  auto at = [&](int i, int j) {  // kDirect: the texel's stored components in place
+    return codes + ((static_cast<std::size_t>(j + b) * W) + static_cast<std::size_t>(i + b)) * static_cast<std::size_t>(nc);
   };
-  const std::uint64_t one = std::uint64_t{1} << L.B;
+  const U one = U{1} << L.B;
   const int B2 = 2 * L.B;
+  const U half = U{1} << (B2 - 1);
   const float two_b = std::ldexp(1.0f, L.B);
+  std::uint32_t k[4] = {0, 0, 0, 0};
   for (int f = 0; f < n; ++f) {
     const auto sf = static_cast<float>(s[f]), tf = static_cast<float>(t[f]);  // as sample_level
-    std::array<std::uint32_t, 4> k{};
     if constexpr (!kLinear) {
-      k = texel(nearest_index_pow2(sf, L.ws, p.wrap_s), nearest_index_pow2(tf, L.hs, p.wrap_t));
+      const std::uint16_t* q = at(nearest_index_pow2(sf, L.ws, p.wrap_s), nearest_index_pow2(tf, L.hs, p.wrap_t));
+      for (int c = 0; c < nc; ++c) k[c] = q[c];
     } else {
       const LinearAxis<float> ax = linear_axis_pow2(sf, L.ws, p.wrap_s), ay = linear_axis_pow2(tf, L.hs, p.wrap_t);
       // floor(ldexp(α, B)): α·2^B is exact in binary32 (a power-of-two scale of
       // α in [0, 1)), and truncation is floor for a non-negative value.
-      const auto a = static_cast<std::uint64_t>(ax.frac * two_b);
-      const auto bb = static_cast<std::uint64_t>(ay.frac * two_b);
-      const auto t00 = texel(ax.i0, ay.i0), t10 = texel(ax.i1, ay.i0);
-      const auto t01 = texel(ax.i0, ay.i1), t11 = texel(ax.i1, ay.i1);
-      const std::uint64_t w00 = (one - a) * (one - bb), w10 = a * (one - bb), w01 = (one - a) * bb, w11 = a * bb;
-      for (int c = 0; c < nc; ++c) {
-        const std::uint64_t sum = t00[c] * w00 + t10[c] * w10 + t01[c] * w01 + t11[c] * w11;
-        k[c] = static_cast<std::uint32_t>((sum + (std::uint64_t{1} << (B2 - 1))) >> B2);
+      const auto a = static_cast<U>(ax.frac * two_b);
+      const auto bb = static_cast<U>(ay.frac * two_b);
+      const U w00 = (one - a) * (one - bb), w10 = a * (one - bb), w01 = (one - a) * bb, w11 = a * bb;
+      if constexpr (kDirect) {
+        const std::uint16_t *t00 = at(ax.i0, ay.i0), *t10 = at(ax.i1, ay.i0);
+        const std::uint16_t *t01 = at(ax.i0, ay.i1), *t11 = at(ax.i1, ay.i1);
+        for (int c = 0; c < nc; ++c) {
+          const U sum = U{t00[c]} * w00 + U{t10[c]} * w10 + U{t01[c]} * w01 + U{t11[c]} * w11;
+          k[c] = static_cast<std::uint32_t>((sum + half) >> B2);
+        }
+      } else {
+        const auto t00 = fetch(im, 2, ax.i0, ay.i0, L.border), t10 = fetch(im, 2, ax.i1, ay.i0, L.border);
+        const auto t01 = fetch(im, 2, ax.i0, ay.i1, L.border), t11 = fetch(im, 2, ax.i1, ay.i1, L.border);
+        for (int c = 0; c < nc; ++c) {
+          const U sum = t00[c] * w00 + t10[c] * w10 + t01[c] * w01 + t11[c] * w11;
+          k[c] = static_cast<std::uint32_t>((sum + half) >> B2);
+        }
       }
     }
     std::uint16_t* o = out + 4 * static_cast<std::size_t>(f);
@@ -458,9 +465,13 @@ void sample_span_fixed(const TextureObject& tex, int dims, const double* s, cons
   }
   const bool linear = tex.params.mag_filter == gl::LINEAR;
   const bool direct = !linear || (tex.params.wrap_s != gl::CLAMP && tex.params.wrap_t != gl::CLAMP);
-  if (!linear) span_level<false, true>(L, s, t, n, out);
-  else if (direct) span_level<true, true>(L, s, t, n, out);
-  else span_level<true, false>(L, s, t, n, out);
+  const bool narrow = im.bits + 2 * L.B <= 31;
+  if (!linear) span_level<false, true, std::uint64_t, 0>(L, s, t, n, out);
+  else if (direct && narrow && L.ncomp == 4) span_level<true, true, std::uint32_t, 4>(L, s, t, n, out);
+  else if (direct && narrow && L.ncomp == 3) span_level<true, true, std::uint32_t, 3>(L, s, t, n, out);
+  else if (direct && narrow) span_level<true, true, std::uint32_t, 0>(L, s, t, n, out);
+  else if (direct) span_level<true, true, std::uint64_t, 0>(L, s, t, n, out);
+  else span_level<true, false, std::uint64_t, 0>(L, s, t, n, out);
 }
 
 Texel sample_texture(const TextureObject& tex, int dims, double s, double t, double lambda_in,
