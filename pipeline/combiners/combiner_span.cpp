@@ -157,7 +157,20 @@ struct Kernel {
       }
     };
     std::int64_t a[kChunk], b[kChunk], c[kChunk], d[kChunk];
-    for (int l = 0; l < 3; ++l) {
+    // A, B, C, D all ZERO (a pass that computes only alpha): RGB is a constant.
+    bool rgb_const = true;
+    for (std::size_t v = 0; v < 4; ++v) rgb_const &= f.var[v].reg == kZero;
+    for (int l = 0; l < 3 && rgb_const; ++l) {
+      wide(f.var[0], l, a);
+      wide(f.var[1], l, b);
+      wide(f.var[2], l, c);
+      wide(f.var[3], l, d);
+      Acc x = Acc{a[0]} * b[0] + (Acc{m2} - a[0]) * c[0] + Acc{d[0]} * Acc{m2};
+      if (x > m4) x = m4;
+      const auto k = static_cast<std::uint16_t>((2 * x * nmax + m4) / (2 * m4));
+      for (int i = 0; i < n; ++i) out[4 * i + l] = k;
+    }
+    for (int l = 0; l < 3 && !rgb_const; ++l) {
       wide(f.var[0], l, a);
       wide(f.var[1], l, b);
       wide(f.var[2], l, c);

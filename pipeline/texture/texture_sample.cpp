@@ -403,13 +403,18 @@ void span_level(const SpanLevel& L, const double* s, const double* t, int n, std
   const U half = U{1} << (B2 - 1);
   const float two_b = std::ldexp(1.0f, L.B);
   std::uint32_t k[4] = {0, 0, 0, 0};
+  // A row of a screen-aligned quad has one t: its axis is then computed once.
+  bool t_const = true;
+  for (int f = 1; f < n && t_const; ++f) t_const = t[f] == t[0];
+  LinearAxis<float> ay;
   for (int f = 0; f < n; ++f) {
     const auto sf = static_cast<float>(s[f]), tf = static_cast<float>(t[f]);  // as sample_level
     if constexpr (!kLinear) {
       const std::uint16_t* q = at(nearest_index_pow2(sf, L.ws, p.wrap_s), nearest_index_pow2(tf, L.hs, p.wrap_t));
       for (int c = 0; c < nc; ++c) k[c] = q[c];
     } else {
-      const LinearAxis<float> ax = linear_axis_pow2(sf, L.ws, p.wrap_s), ay = linear_axis_pow2(tf, L.hs, p.wrap_t);
+      const LinearAxis<float> ax = linear_axis_pow2(sf, L.ws, p.wrap_s);
+      if (!t_const || f == 0) ay = linear_axis_pow2(tf, L.hs, p.wrap_t);
       // floor(ldexp(α, B)): α·2^B is exact in binary32 (a power-of-two scale of
       // α in [0, 1)), and truncation is floor for a non-negative value.
       const auto a = static_cast<U>(ax.frac * two_b);
