@@ -114,22 +114,26 @@ bool Context::shade_run_fast(const ShadingState& st, const ShadingPlan& plan,
     return true;
   }
 
-  // Texture environments (texture_environments), unit by unit, in place on `out`.
+  // Texture environments (texture_environments), unit by unit, in place on `out`;
+  // COMBINE may read the primary colour, kept aside first.
   const int bits = st.color.bits;
   bool primary_kept = false;
+  for (int u = 0; u < kShadeUnits && !primary_kept; ++u)
+    if (plan.env[u] && st.units[u].env.mode == gl::COMBINE) {
+      sc.primary.assign(out, out + 4 * N);
+      primary_kept = true;
+    }
   for (int u = 0; u < kShadeUnits; ++u) {
     if (!plan.env[u]) continue;
     const TextureObject& tex = *st.units[u].texture;
     const BaseFormat base = tex.levels[static_cast<std::size_t>(tex.params.base_level)].base;
     const TexEnvState& env = st.units[u].env;
-    if (plan.sample[u] && texture_environment_span_fixed(env, base, texel_bits(u), out, sc.texels[u].data(), n,
-                                                         st.color, out))
+    if (plan.sample[u] && texture_environment_span_fixed(env, base, texel_bits(u), out, sc.primary.data(),
+                                                         sc.texels[u].data(), n, st.color, out))
       continue;
     // No integer kernel: texture_environment per fragment (COMBINE reads the
     // primary colour, kept aside before the first unit changes `out`).
-    if (!primary_kept) {
-      // Units before this one changed `out` only if they ran; the primary colour
-      // is recomputed rather than tracked.
+    if (!primary_kept) {  // (units before this one may have changed `out`)
       sc.primary.resize(4 * N);
       interpolate_colors(tv, false, cov, run, flat, n, sc.lane, sc.primary.data());
       primary_kept = true;
