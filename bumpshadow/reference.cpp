@@ -11,7 +11,15 @@
 namespace ffsim::bumpshadow {
 
 void project_light(const Vec3& l, double& lx, double& ly) {
-  const double n = std::sqrt(l.x * l.x + l.y * l.y + l.z * l.z);
+  // A grazing light's z computed as sqrt(1 - x^2 - y^2) is NaN when rounding makes
+  // the radicand a tiny negative number (e.g. x = 0.6, y = 0.8); its intended value
+  // is 0. The zero vector has no direction: it projects to (0, 0).
+  const double z = std::isnan(l.z) ? 0.0 : l.z;
+  const double n = std::sqrt(l.x * l.x + l.y * l.y + z * z);
+  if (n == 0) {
+    lx = ly = 0;
+    return;
+  }
   lx = l.x / n;
   ly = l.y / n;
 }

@@ -31,7 +31,8 @@ std::vector<double> reference_soft_map(const HeightField& hf, const Vec3& light,
                                        const MarchOptions& m = {}, int threads = 0);
 
 // The light's projection into the tangent plane, the (lx, ly) of the paper's
-// shadow test: normalize(L).xy.
+// shadow test: normalize(L).xy. A NaN z (sqrt of a tiny negative radicand at a
+// grazing light) counts as 0; the zero vector gives (0, 0).
 void project_light(const Vec3& light, double& lx, double& ly);
 
 }  // namespace ffsim::bumpshadow

@@ -36,7 +36,7 @@ bool Context::error(GLenum code, const char* function, std::string message) {
   // §2.5: only the first error is latched until getError; later ones are still
   // reported to the debug callback and the log.
   if (pending_error_ == gl::NO_ERROR) pending_error_ = code;
-  GLErrorEvent ev{code, function, std::move(message), call_site_};
+  GLErrorEvent ev{code, function, std::move(message), call_site()};
   if (on_error_) on_error_(ev);
   error_log_.push_back(std::move(ev));
   return false;

@@ -96,8 +96,14 @@ class Context {
 
   // ---- errors -------------------------------------------------------------
   GLenum getError();  // returns and clears the recorded error (GL_NO_ERROR if none)
-  void set_call_site(SourceLoc where) { call_site_ = std::move(where); }
-  const SourceLoc& call_site() const { return call_site_; }
+  void set_call_site(SourceLoc where) {
+    call_site_ = std::move(where);
+    call_site_ref_ = nullptr;
+  }
+  // The same without a copy (the trace executor, once per step): `where` must
+  // outlive every later GL call until the next set_call_site*.
+  void set_call_site_ref(const SourceLoc& where) { call_site_ref_ = &where; }
+  const SourceLoc& call_site() const { return call_site_ref_ ? *call_site_ref_ : call_site_; }
   void set_error_callback(std::function<void(const GLErrorEvent&)> cb) { on_error_ = std::move(cb); }
   const std::vector<GLErrorEvent>& error_log() const { return error_log_; }
   // Record an error raised by `function`; returns false so callers can write
@@ -372,6 +378,9 @@ class Context {
   const ProbeLog& probe() const { return probe_; }
   // "color codes (...) = (...), stencil 3, depth 16777215" at (x, y), for probe records.
   std::string probe_describe_buffers(int x, int y) const;
+  // Fragments that have entered the per-fragment operations since construction
+  // (every write_fragments span; `ffsim bench --perf` divides bytes and time by it).
+  std::uint64_t fragments_written() const { return fragments_written_; }
 
 
   // ==== [issue 10] performance ====
@@ -396,6 +405,7 @@ class Context {
   Framebuffer fb_;
   GLenum pending_error_ = gl::NO_ERROR;
   SourceLoc call_site_;
+  const SourceLoc* call_site_ref_ = nullptr;  // set_call_site_ref; overrides call_site_
   std::function<void(const GLErrorEvent&)> on_error_;
   std::vector<GLErrorEvent> error_log_;
 
@@ -516,6 +526,7 @@ class Context {
   // ==== [issue 6] state ====
   int threads_ = 1;
   ProbeLog probe_;
+  std::uint64_t fragments_written_ = 0;
 
   // ==== [issue 10] state ====
   bool fast_paths_ = true;

@@ -44,6 +44,7 @@ void Context::pixel_fragments(FragmentSpan& span) {
 }
 
 void Context::write_fragments(FragmentSpan& span) {
+  fragments_written_ += static_cast<std::uint64_t>(span.count);
   update_fragment_plan();
   FragmentBuffers b;
   if (fb_.format().float_color()) b.values = fb_.values().data();

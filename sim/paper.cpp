@@ -1,6 +1,7 @@
 #include "sim/paper.h"
 
-#include <chrono>
+#include "sim/paper_run.h"
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -148,53 +149,6 @@ std::vector<Scene> scenes(bool quick) {
            "the same polygon magnified 4x (bilinear filtering between texels)"},
           {"terrain", {{"scene", "1"}, {"res", "128"}, {"lx", "0.8"}, {"ly", "0.5"}, {"penumbra", "4"}},
            "terrain, 31x31 vertices, 128^2 maps, 256x144 window, low light (elevation 19 degrees), penumbra 4"}};
-}
-
-struct Run {
-  bool ok = false;
-  std::string error;
-  double load_seconds = 0, run_seconds = 0;
-  trace::RunResult r;
-};
-
-Run run_trace(const std::string& path, const std::vector<std::pair<std::string, std::string>>& sets,
-              const std::string& out_dir, int threads) {
-  Run run;
-  const auto t0 = std::chrono::steady_clock::now();
-  try {
-    trace::LoadOptions lo;
-    lo.sets = sets;
-    const trace::Program prog = trace::load_trace_file(path, lo);
-    const auto t1 = std::chrono::steady_clock::now();
-    run.load_seconds = std::chrono::duration<double>(t1 - t0).count();
-    trace::RunOptions ro;
-    ro.out_dir = out_dir;
-    ro.keep_images = true;
-    ro.threads = threads;
-    std::ostringstream sink;
-    run.r = trace::run_program(prog, ro, sink);
-    run.run_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
-    run.ok = run.r.ok && run.r.expect_failures.empty() && run.r.gl_errors.empty();
-    if (!run.r.ok) run.error = run.r.fatal;
-    else if (!run.r.gl_errors.empty()) run.error = run.r.gl_errors.front();
-    else if (!run.r.expect_failures.empty()) run.error = run.r.expect_failures.front();
-  } catch (const trace::TraceError& e) {
-    run.error = e.where().str() + ": " + e.what();
-  } catch (const std::exception& e) {
-    run.error = e.what();
-  }
-  return run;
-}
-
-const Image* image_of(const Run& r, const std::string& name) {
-  auto it = r.r.images.find(name);
-  return it == r.r.images.end() ? nullptr : &it->second;
-}
-
-std::vector<bool> threshold(const std::vector<double>& v, double t) {
-  std::vector<bool> b(v.size());
-  for (std::size_t i = 0; i < v.size(); ++i) b[i] = v[i] > t;
-  return b;
 }
 
 struct Row {

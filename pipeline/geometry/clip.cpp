@@ -25,6 +25,31 @@ ClipVertex lerp(const ClipVertex& in, const ClipVertex& out, double t) {
 }  // namespace
 
 std::vector<ClipVertex> clip_polygon(std::vector<ClipVertex> poly) {
+  // Trivial cases first, with the same outcome as the six passes below: a polygon
+  // with every vertex inside every plane goes through each pass unchanged (each
+  // edge keeps its inside start point, no edge crosses), and one with every vertex
+  // outside the same plane loses every vertex in that pass.
+  unsigned inside_all = 0x3f;
+  for (const ClipVertex& v : poly) {
+    unsigned inside = 0;
+    for (int k = 0; k < 6; ++k)
+      if (plane_distance(v.position, k) >= 0) inside |= 1u << k;
+    inside_all &= inside;
+  }
+  if (inside_all == 0x3f) {
+    if (poly.size() < 3) poly.clear();
+    return poly;
+  }
+  bool outside_one = false;
+  for (int k = 0; k < 6 && !outside_one; ++k) {
+    outside_one = true;
+    for (const ClipVertex& v : poly) outside_one = outside_one && !(plane_distance(v.position, k) >= 0);
+  }
+  if (outside_one) return {};
+  return clip_polygon_passes(std::move(poly));
+}
+
+std::vector<ClipVertex> clip_polygon_passes(std::vector<ClipVertex> poly) {
   std::vector<ClipVertex> next;
   for (int k = 0; k < 6 && poly.size() >= 3; ++k) {
     next.clear();

@@ -29,6 +29,9 @@ struct ClipVertex {
 // shared by two polygons yields the same vertex in both. Returns fewer than 3
 // vertices when nothing remains.
 std::vector<ClipVertex> clip_polygon(std::vector<ClipVertex> poly);
+// The six passes alone, without clip_polygon's shortcut for polygons wholly inside
+// the view volume or wholly outside one plane (the reference its tests compare with).
+std::vector<ClipVertex> clip_polygon_passes(std::vector<ClipVertex> poly);
 
 // Whether a point lies in the view volume (raster position validity, §2.12).
 bool inside_view_volume(const glm::dvec4& p);

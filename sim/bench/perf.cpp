@@ -1,14 +1,479 @@
+// `ffsim bench --perf` (issue 10). Four tables, each also written as CSV:
+//
+//  1. stages   per-stage throughput on one core: a set-up trace under traces/perf/
+//              is replayed once, then its timed pass (a full-window quad, a
+//              CopyPixels, or a texture upload) repeatedly on the same Context;
+//              Mfragments/s = fragments entering the per-fragment operations (or
+//              texels uploaded) / time, median of the repeats.
+//  2. traces   whole paper traces (load excluded; outputs skipped): frames/s.
+//  3. scaling  frames/s over window sizes 256^2 .. 2048^2.
+//  4. threads  frames/s over worker thread counts.
+//
+// Beside each time: the memory-bandwidth floor, the bytes the pass must read and
+// write in ffsim's own storage (16-bit colour codes, 8-bit stencil, 32-bit depth)
+// divided by this machine's measured copy bandwidth. Nothing here fails on a
+// number; the numbers go to the table, docs/results/perf_*.csv and perf.md.
 #include "sim/bench/perf.h"
 
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <memory>
 #include <ostream>
+#include <sstream>
+#include <thread>
+
+#include "pipeline/gl/enums.h"
+#include "sim/cli/cli.h"
+#include "sim/context.h"
+#include "sim/trace/executor.h"
+#include "sim/trace/trace.h"
 
 namespace ffsim::bench {
 
-std::string perf_usage() { return "usage: ffsim bench --perf ...  (throughput; not built yet)\n"; }
+namespace fs = std::filesystem;
 
-int run_perf(const std::vector<std::string>&, std::ostream&, std::ostream& err) {
-  err << "ffsim bench --perf: not built yet (issue #10)\n";
-  return 2;
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using Sets = std::vector<std::pair<std::string, std::string>>;
+
+struct Options {
+  bool quick = false;
+  std::string traces_dir = "traces";
+  std::string out_dir = "docs/results";
+  int repeat = 7;
+  int stage_size = 0;  // 0: 1024 (256 with --quick)
+  bool stages = true, traces = true, scaling = true, threads = true;
+  std::vector<int> thread_counts;  // empty: 1 .. hardware threads
+  std::string trace_file;          // --trace FILE: time this trace alone
+  Sets sets;                       // --set NAME=EXPR for --trace
+};
+
+// Median, minimum and maximum of repeated timings (seconds).
+struct Timing {
+  double median = 0, min = 0, max = 0;
+};
+
+Timing summarise(std::vector<double> t) {
+  Timing s;
+  if (t.empty()) return s;
+  std::sort(t.begin(), t.end());
+  const std::size_t n = t.size();
+  s.median = n % 2 ? t[n / 2] : (t[n / 2 - 1] + t[n / 2]) / 2;
+  s.min = t.front();
+  s.max = t.back();
+  return s;
+}
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+std::string fixed(double v, int digits) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
+  return buf;
+}
+
+// Copy bandwidth of this machine in bytes per second, counting the bytes read plus
+// the bytes written (2 x the buffer per memcpy): best of the repeats, buffers much
+// larger than the caches.
+double copy_bandwidth(std::size_t bytes, int repeats) {
+  std::vector<unsigned char> a(bytes, 1), b(bytes, 2);
+  double best = 0;
+  for (int r = 0; r < repeats; ++r) {
+    const auto t0 = Clock::now();
+    std::memcpy(r % 2 ? a.data() : b.data(), r % 2 ? b.data() : a.data(), bytes);
+    const double t = seconds_since(t0);
+    if (t > 0) best = std::max(best, 2.0 * static_cast<double>(bytes) / t);
+  }
+  return best;
+}
+
+trace::Program load(const std::string& path, const Sets& sets) {
+  trace::LoadOptions lo;
+  lo.sets = sets;
+  return trace::load_trace_file(path, lo);
+}
+
+trace::RunOptions quiet_run(int threads) {
+  trace::RunOptions ro;
+  ro.outputs = false;  // no dumps, hashes or expects: the GL work alone
+  ro.threads = threads;
+  return ro;
+}
+
+void check(const trace::RunResult& r, const std::string& what) {
+  if (!r.ok) throw std::runtime_error(what + ": " + r.fatal);
+  if (!r.gl_errors.empty()) throw std::runtime_error(what + ": " + r.gl_errors.front());
+}
+
+// ---- 1. stages ---------------------------------------------------------------
+
+struct Stage {
+  std::string name;
+  std::string setup;      // traces/perf/<setup>.trace
+  std::string pass;       // traces/perf/<pass>.trace; empty: the texture upload
+  int mag = 1;            // pixels per texel
+  double bytes = 0;       // bytes per fragment the pass must read + write
+  std::string bytes_note;
+};
+
+std::vector<Stage> stages() {
+  // Colour is stored as 16-bit codes (4 channels: 8 B), stencil 1 B, depth 4 B.
+  // The 64^2 textures stay in the caches and are not counted.
+  return {
+      {"quad REPLACE (texel-aligned)", "quad-replace", "pass-quad", 1, 8, "colour write 8 B"},
+      {"quad REPLACE (2x magnified)", "quad-replace", "pass-quad", 2, 8, "colour write 8 B"},
+      {"quad ADD blend", "quad-add", "pass-quad", 1, 16, "colour read + write 16 B"},
+      {"quad ADD blend (2x magnified)", "quad-add", "pass-quad", 2, 16, "colour read + write 16 B"},
+      {"quad SUBTRACT blend", "quad-subtract", "pass-quad", 1, 16, "colour read + write 16 B"},
+      {"combiners: shadow test, 2 bilinear units", "combiner-shadow", "pass-quad", 1, 2, "alpha write 2 B"},
+      {"combiners: shadow test (2x magnified)", "combiner-shadow", "pass-quad", 2, 2, "alpha write 2 B"},
+      {"CopyPixels + alpha test + stencil INCR", "copypixels-stencil", "pass-copypixels", 1, 10,
+       "colour read 8 B + stencil read + write 2 B"},
+      {"texture upload: colour matrix + post-CM table", "upload-transfer", "", 1, 6,
+       "client RGBA8 read 4 B + texel write 2 B"},
+  };
+}
+
+struct StageRow {
+  Stage stage;
+  int w = 0;
+  double fragments = 0;  // per pass
+  Timing t;
+};
+
+StageRow run_stage(const Options& o, const Stage& st, int w, int repeat) {
+  const fs::path dir = fs::path(o.traces_dir) / "perf";
+  const Sets sets = {{"w", std::to_string(w)}, {"mag", std::to_string(st.mag)}};
+  const trace::Program setup = load((dir / (st.setup + ".trace")).string(), sets);
+  Context ctx(setup.profile, setup.width, setup.height);
+  std::ostringstream sink;
+  check(trace::run_program_on(ctx, setup, quiet_run(1), sink), st.setup);
+
+  std::function<void()> pass;
+  std::function<double()> count;
+  std::unique_ptr<trace::Program> pass_prog;
+  std::vector<std::uint8_t> client;
+  if (!st.pass.empty()) {
+    const Sets pass_sets = st.pass == "pass-quad" ? sets : Sets{sets.front()};  // only pass-quad takes mag
+    pass_prog = std::make_unique<trace::Program>(load((dir / (st.pass + ".trace")).string(), pass_sets));
+    pass = [&] { check(trace::run_program_on(ctx, *pass_prog, quiet_run(1), sink), st.pass); };
+  } else {
+    // Biased normals (c + 1)/2 of a fixed pseudo-random pattern (xorshift32).
+    client.resize(4 * static_cast<std::size_t>(w) * static_cast<std::size_t>(w));
+    std::uint32_t x = 2463534242u;
+    for (std::size_t i = 0; i < client.size(); ++i) {
+      x ^= x << 13;
+      x ^= x >> 17;
+      x ^= x << 5;
+      client[i] = (i % 4 == 3) ? 255 : static_cast<std::uint8_t>(x >> 24);
+    }
+    pass = [&] {
+      ctx.texImage2D(gl::TEXTURE_2D, 0, gl::ALPHA8, w, w, 0, gl::RGBA, gl::UNSIGNED_BYTE, client.data());
+      if (ctx.getError() != gl::NO_ERROR) throw std::runtime_error("texture upload: GL error");
+    };
+  }
+  StageRow row;
+  row.stage = st;
+  row.w = w;
+  const std::uint64_t f0 = ctx.fragments_written();
+  pass();  // warm-up
+  const std::uint64_t f1 = ctx.fragments_written();
+  row.fragments = st.pass.empty() ? static_cast<double>(w) * w : static_cast<double>(f1 - f0);
+  std::vector<double> times;
+  for (int r = 0; r < repeat; ++r) {
+    const auto t0 = Clock::now();
+    pass();
+    times.push_back(seconds_since(t0));
+  }
+  row.t = summarise(times);
+  return row;
+}
+
+// ---- 2-4. whole traces ---------------------------------------------------------
+
+struct TraceCase {
+  std::string trace;  // stem under traces/
+  std::string scene;  // "polygon" or "terrain"
+  int width = 0, height = 0;
+  int threads = 1;
+};
+
+struct TraceRow {
+  TraceCase c;
+  int passes = 0;
+  double fragments = 0;  // per frame
+  Timing t;              // seconds per frame
+};
+
+Sets scene_sets(const TraceCase& c) {
+  if (c.scene == "polygon")  // the 64^2 maps, magnified to the window (bilinear)
+    return {{"scene", "0"}, {"res", "64"}, {"zoom", fixed(c.width / 64.0, 6)}};
+  return {{"scene", "1"}, {"res", "128"}, {"tw", std::to_string(c.width)}, {"th", std::to_string(c.height)}};
+}
+
+TraceRow run_trace_case(const Options& o, const TraceCase& c, int repeat) {
+  const trace::Program prog = load((fs::path(o.traces_dir) / (c.trace + ".trace")).string(), scene_sets(c));
+  TraceRow row;
+  row.c = c;
+  row.passes = prog.pass_count();
+  std::ostringstream sink;
+  std::vector<double> times;
+  for (int r = 0; r <= repeat; ++r) {  // r = 0: warm-up
+    Context ctx(prog.profile, prog.width, prog.height);
+    const auto t0 = Clock::now();
+    check(trace::run_program_on(ctx, prog, quiet_run(c.threads), sink), c.trace);
+    const double t = seconds_since(t0);
+    if (r == 0) row.fragments = static_cast<double>(ctx.fragments_written());
+    else times.push_back(t);
+  }
+  row.t = summarise(times);
+  return row;
+}
+
+// Lower bound per fragment of a paper pass: every pass depth-tests (reads 4 B of
+// depth) and writes at least the 1-byte stencil or one 2-byte colour channel.
+constexpr double kTraceBytesPerFragment = 5;
+
+// ---- output --------------------------------------------------------------------
+
+struct Csv {
+  std::ofstream f;
+  Csv(const fs::path& p, const std::string& header) : f(p) { f << header << "\n"; }
+};
+
+std::string cell(std::string s, std::size_t w) {
+  if (s.size() < w) s.append(w - s.size(), ' ');
+  return s;
+}
+
+int parse_args(const std::vector<std::string>& args, Options& o, std::ostream& err) {
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    auto value = [&]() -> const std::string* { return i + 1 < args.size() ? &args[++i] : nullptr; };
+    if (a == "--quick") o.quick = true;
+    else if (a == "--traces") {
+      const std::string* v = value();
+      if (!v) return cli::usage_error(err, "bench --perf", "--traces expects a directory");
+      o.traces_dir = *v;
+    } else if (a == "--out") {
+      const std::string* v = value();
+      if (!v) return cli::usage_error(err, "bench --perf", "--out expects a directory");
+      o.out_dir = *v;
+    } else if (a == "--repeat") {
+      const std::string* v = value();
+      int n = 0;
+      if (!v || std::sscanf(v->c_str(), "%d", &n) != 1 || n < 1 || n > 1000)
+        return cli::usage_error(err, "bench --perf", "--repeat expects 1..1000");
+      o.repeat = n;
+    } else if (a == "--trace") {
+      const std::string* v = value();
+      if (!v) return cli::usage_error(err, "bench --perf", "--trace expects a trace file");
+      o.trace_file = *v;
+    } else if (a == "--set") {
+      const std::string* v = value();
+      if (!v) return cli::usage_error(err, "bench --perf", "--set expects NAME=EXPR");
+      try {
+        o.sets.push_back(trace::parse_set_argument(*v));
+      } catch (const std::exception& e) {
+        return cli::usage_error(err, "bench --perf", e.what());
+      }
+    } else if (a == "--size") {
+      const std::string* v = value();
+      int n = 0;
+      if (!v || std::sscanf(v->c_str(), "%d", &n) != 1 || n < 16 || n > 4096)
+        return cli::usage_error(err, "bench --perf", "--size expects 16..4096");
+      o.stage_size = n;
+    } else if (a == "--only") {
+      const std::string* v = value();
+      if (!v || (*v != "stages" && *v != "traces" && *v != "scaling" && *v != "threads"))
+        return cli::usage_error(err, "bench --perf", "--only expects stages, traces, scaling or threads");
+      o.stages = *v == "stages";
+      o.traces = *v == "traces";
+      o.scaling = *v == "scaling";
+      o.threads = *v == "threads";
+    } else if (a == "--threads") {
+      const std::string* v = value();
+      if (!v) return cli::usage_error(err, "bench --perf", "--threads expects a list like 1,2,4");
+      std::stringstream ss(*v);
+      std::string item;
+      while (std::getline(ss, item, ',')) {
+        int n = 0;
+        if (std::sscanf(item.c_str(), "%d", &n) != 1 || n < 1 || n > 256)
+          return cli::usage_error(err, "bench --perf", "--threads expects a list of 1..256 like 1,2,4");
+        o.thread_counts.push_back(n);
+      }
+    } else return cli::usage_error(err, "bench --perf", "unknown argument `" + a + "`");
+  }
+  return 0;
+}
+
+// --trace FILE: load once, replay --repeat times on fresh Contexts (outputs off).
+int time_one_trace(const Options& o, std::ostream& out, std::ostream& err) {
+  try {
+    const trace::Program prog = load(o.trace_file, o.sets);
+    std::vector<double> times;
+    std::uint64_t fragments = 0;
+    std::ostringstream sink;
+    for (int r = 0; r <= o.repeat; ++r) {
+      Context ctx(prog.profile, prog.width, prog.height);
+      const auto t0 = Clock::now();
+      check(trace::run_program_on(ctx, prog, quiet_run(o.thread_counts.empty() ? 1 : o.thread_counts.front()), sink),
+            o.trace_file);
+      if (r > 0) times.push_back(seconds_since(t0));
+      fragments = ctx.fragments_written();
+    }
+    const Timing t = summarise(times);
+    out << o.trace_file << ": " << prog.width << "x" << prog.height << ", " << prog.pass_count() << " passes, "
+        << fragments << " fragments; median " << fixed(t.median * 1e3, 3) << " ms (" << fixed(t.min * 1e3, 3) << " .. "
+        << fixed(t.max * 1e3, 3) << "), " << fixed(1 / t.median, 1) << " frames/s, "
+        << fixed(static_cast<double>(fragments) / t.median / 1e6, 1) << " Mfragments/s\n";
+  } catch (const trace::TraceError& e) {
+    err << "ffsim bench --perf: " << e.where().str() << ": " << e.what() << "\n";
+    return 1;
+  } catch (const std::exception& e) {
+    err << "ffsim bench --perf: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace
+
+std::string perf_usage() {
+  return "usage: ffsim bench --perf [--quick] [--only stages|traces|scaling|threads] [--repeat N]\n"
+         "                          [--size N] [--threads 1,2,...] [--traces DIR] [--out DIR]\n"
+         "       ffsim bench --perf --trace FILE [--set NAME=EXPR ...] [--repeat N] [--threads N]\n\n"
+         "Throughput (issue 10), each time beside its memory-bandwidth floor (the bytes the pass\n"
+         "must read and write / this machine's measured copy bandwidth):\n"
+         "  stages   Mfragments/s of one pass on one core, N x N window (--size, default 1024;\n"
+         "           set-ups in traces/perf/)\n"
+         "  traces   frames/s of kautz-imaging-hard, kautz-imaging-aa, kautz-geforce-aa on the\n"
+         "           polygon at 512^2 and the terrain at 640x480, one thread\n"
+         "  scaling  frames/s of the same traces at 256^2, 512^2, 1024^2, 2048^2\n"
+         "  threads  frames/s of the terrain at 640x480 for 1 .. hardware threads\n"
+         "Median of --repeat N runs (default 7; 3 with --quick) after one warm-up, with min and max.\n"
+         "--quick: 256^2 stages, the smaller sizes, about a minute. Writes perf_stages.csv,\n"
+         "perf_traces.csv, perf_scaling.csv, perf_threads.csv and perf.md into --out\n"
+         "(default docs/results). Never fails on a number.\n"
+         "--trace FILE: replay one trace --repeat times (loaded once, outputs off) and print its\n"
+         "median frame time, frames/s and Mfragments/s.\n";
+}
+
+int run_perf(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  Options o;
+  if (const int rc = parse_args(args, o, err)) return rc;
+  const bool repeat_given = std::find(args.begin(), args.end(), "--repeat") != args.end();
+  if (o.quick && !repeat_given) o.repeat = 3;
+  const int hw = std::max(1u, std::thread::hardware_concurrency());
+  if (o.thread_counts.empty())
+    for (int t = 1; t <= std::max(2, hw); ++t) o.thread_counts.push_back(t);
+  std::error_code ec;
+  fs::create_directories(o.out_dir, ec);
+  if (ec) {
+    err << "ffsim bench --perf: cannot create `" << o.out_dir << "`: " << ec.message() << "\n";
+    return 1;
+  }
+  if (!o.trace_file.empty()) return time_one_trace(o, out, err);
+  std::ostringstream md;
+  try {
+    const double bw = copy_bandwidth(std::size_t{o.quick ? 32u : 128u} << 20, 7);
+    out << "copy bandwidth (read + write): " << fixed(bw / 1e9, 2) << " GB/s; hardware threads: " << hw << "\n\n";
+    md << "# Throughput (`ffsim bench --perf" << (o.quick ? " --quick" : "") << "`)\n\n"
+       << "Copy bandwidth (memcpy, bytes read + written): " << fixed(bw / 1e9, 2) << " GB/s; hardware threads: " << hw
+       << ". Median of " << o.repeat << " runs after a warm-up (min .. max in the CSV files).\n\n";
+
+    if (o.stages) {
+      const int w = o.stage_size ? o.stage_size : o.quick ? 256 : 1024;
+      Csv csv(fs::path(o.out_dir) / "perf_stages.csv",
+              "stage,window,fragments_per_pass,median_s,min_s,max_s,mfrag_per_s,bytes_per_fragment,floor_mfrag_per_s,"
+              "fraction_of_floor");
+      out << "Per-stage throughput, one core, " << w << "x" << w << " window\n"
+          << cell("stage", 48) << cell("Mfrag/s", 10) << cell("floor", 10) << "bytes/fragment\n";
+      md << "## Per-stage throughput, one core, " << w << "x" << w << "\n\n"
+         << "| stage | Mfragments/s | spread (min..max) | floor (Mfragments/s) | bytes per fragment |\n| --- | --- | --- | --- | --- |\n";
+      for (const Stage& st : stages()) {
+        const StageRow r = run_stage(o, st, w, o.repeat);
+        const double rate = r.fragments / r.t.median / 1e6, floor = bw / st.bytes / 1e6;
+        out << cell(st.name, 48) << cell(fixed(rate, 1), 10) << cell(fixed(floor, 0), 10) << st.bytes_note << "\n";
+        md << "| " << st.name << " | " << fixed(rate, 1) << " | " << fixed(r.fragments / r.t.max / 1e6, 1) << " .. "
+           << fixed(r.fragments / r.t.min / 1e6, 1) << " | " << fixed(floor, 0) << " | " << st.bytes_note << " |\n";
+        csv.f << '"' << st.name << "\"," << w << "," << r.fragments << "," << r.t.median << "," << r.t.min << "," << r.t.max
+              << "," << rate << "," << st.bytes << "," << floor << "," << rate / floor << "\n";
+      }
+      out << "\n";
+      md << "\n";
+    }
+
+    const std::vector<std::string> traces = {"kautz-imaging-hard", "kautz-imaging-aa", "kautz-geforce-aa"};
+    auto frame_line = [&](const TraceRow& r, Csv& csv, const std::string& table) {
+      const double fps = 1.0 / r.t.median, floor = bw / (r.fragments * kTraceBytesPerFragment);
+      out << cell(r.c.trace, 22) << cell(r.c.scene, 9) << cell(std::to_string(r.c.width) + "x" + std::to_string(r.c.height), 11)
+          << cell(std::to_string(r.c.threads), 8) << cell(fixed(fps, 1), 10) << cell(fixed(r.fragments / 1e6, 2), 10)
+          << cell(fixed(r.fragments * fps / 1e6, 1), 10) << fixed(floor, 0) << "\n";
+      md << "| " << r.c.trace << " | " << r.c.scene << " | " << r.c.width << "x" << r.c.height << " | " << r.c.threads << " | "
+         << fixed(fps, 1) << " | " << fixed(1.0 / r.t.max, 1) << " .. " << fixed(1.0 / r.t.min, 1) << " | " << r.passes << " | "
+         << fixed(r.fragments / 1e6, 2) << " | " << fixed(r.fragments * fps / 1e6, 1) << " | " << fixed(floor, 0) << " |\n";
+      csv.f << table << "," << r.c.trace << "," << r.c.scene << "," << r.c.width << "," << r.c.height << "," << r.c.threads << ","
+            << r.passes << "," << r.fragments << "," << r.t.median << "," << r.t.min << "," << r.t.max << "," << fps << ","
+            << r.fragments * fps / 1e6 << "," << floor << "\n";
+    };
+    const std::string csv_header =
+        "table,trace,scene,width,height,threads,passes,fragments_per_frame,median_s,min_s,max_s,fps,mfrag_per_s,floor_fps";
+    auto table_head = [&](const std::string& title) {
+      out << title << "\n"
+          << cell("trace", 22) << cell("scene", 9) << cell("window", 11) << cell("threads", 8) << cell("frames/s", 10)
+          << cell("Mfrag", 10) << cell("Mfrag/s", 10) << "floor fps\n";
+      md << "## " << title << "\n\n| trace | scene | window | threads | frames/s | spread | passes | Mfragments per frame | "
+            "Mfragments/s | floor (frames/s) |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+    };
+    const std::string floor_note = "Floor: " + fixed(kTraceBytesPerFragment, 0) +
+                                   " B per fragment (every pass reads the 4-byte depth and writes at least the stencil "
+                                   "byte or one 2-byte colour channel) at the copy bandwidth.\n\n";
+
+    if (o.traces) {
+      Csv csv(fs::path(o.out_dir) / "perf_traces.csv", csv_header);
+      table_head("Whole traces, one thread");
+      for (const std::string& t : traces) {
+        frame_line(run_trace_case(o, {t, "polygon", o.quick ? 256 : 512, o.quick ? 256 : 512, 1}, o.repeat), csv, "traces");
+        frame_line(run_trace_case(o, {t, "terrain", o.quick ? 320 : 640, o.quick ? 240 : 480, 1}, o.repeat), csv, "traces");
+      }
+      out << "\n";
+      md << "\n" << floor_note;
+    }
+    if (o.scaling) {
+      Csv csv(fs::path(o.out_dir) / "perf_scaling.csv", csv_header);
+      table_head("Scaling with the window size, one thread");
+      const std::vector<int> sizes = o.quick ? std::vector<int>{128, 256} : std::vector<int>{256, 512, 1024, 2048};
+      for (const std::string& t : traces)
+        for (const char* scene : {"polygon", "terrain"})
+          for (int s : sizes) frame_line(run_trace_case(o, {t, scene, s, s, 1}, s >= 2048 ? std::max(1, o.repeat / 2) : o.repeat), csv, "scaling");
+      out << "\n";
+      md << "\n" << floor_note;
+    }
+    if (o.threads) {
+      Csv csv(fs::path(o.out_dir) / "perf_threads.csv", csv_header);
+      table_head("Scaling with worker threads (`--threads`)");
+      for (const std::string& t : traces)
+        for (int n : o.thread_counts)
+          frame_line(run_trace_case(o, {t, "terrain", o.quick ? 320 : 640, o.quick ? 240 : 480, n}, o.repeat), csv, "threads");
+      out << "\n";
+      md << "\n" << floor_note;
+    }
+  } catch (const std::exception& e) {
+    err << "ffsim bench --perf: " << e.what() << "\n";
+    return 1;
+  }
+  std::ofstream(fs::path(o.out_dir) / "perf.md") << md.str();
+  out << "wrote " << (fs::path(o.out_dir) / "perf.md").string() << " and perf_*.csv\n";
+  return 0;
 }
 
 }  // namespace ffsim::bench

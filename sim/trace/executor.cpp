@@ -58,13 +58,14 @@ class Runner {
         const Step& s = p_.steps[k];
         if (s.kind != StepKind::ExpectError) flush_errors();
         if (!r_.ok) break;
-        ctx.set_call_site(s.where);
+        if (!o_.outputs && s.kind != StepKind::Call && s.kind != StepKind::ExpectError) continue;
+        ctx.set_call_site_ref(s.where);  // p_.steps outlives the run
         execute(ctx, s);
         ++r_.steps;
         collect_errors(ctx);
       }
       flush_errors();
-      if (r_.ok) {
+      if (r_.ok && o_.outputs) {
         const Framebuffer& fb = ctx.framebuffer();
         r_.final_hashes.emplace_back("color", hash_hex(buffer_hash(fb, BufferKind::Color)));
         r_.final_hashes.emplace_back("alpha", hash_hex(buffer_hash(fb, BufferKind::Alpha)));

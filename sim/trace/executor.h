@@ -28,6 +28,8 @@ struct RunOptions {
   std::optional<std::pair<int, int>> probe;  // print what each pass did at this pixel
   bool strict = false;          // the first GL error not checked by `expect error` is fatal
   bool keep_images = false;     // keep every dump's image in RunResult::images
+  bool outputs = true;          // false: skip dump, hash and expect steps and the final
+                                // hashes (`ffsim bench` times the GL work alone)
 };
 
 struct HashLine {

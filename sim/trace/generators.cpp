@@ -1,6 +1,8 @@
 #include "sim/trace/generators.h"
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -11,6 +13,7 @@
 #include "bumpshadow/ellipse_test.h"
 #include "bumpshadow/generators.h"
 #include "bumpshadow/heightfield.h"
+#include "bumpshadow/horizon.h"
 #include "bumpshadow/reference.h"
 #include "bumpshadow/shadow_map.h"
 #include "pipeline/number/unorm.h"
@@ -262,6 +265,57 @@ Image shadowmap(GeneratorArgs& a) {
   return byte_image(enc->t2n8);
 }
 
+// ---- [issue 9] Max's horizon map as the 8-bit textures hardware of 2000 would use ----
+//
+// `generate H0 horizon field=bumps w=64 azimuths=16 index=3` gives one channel per
+// texel: the horizon elevation beta (radians, bumpshadow::compute_horizon_map)
+// toward azimuth theta_index = 2 pi index / azimuths, encoded linearly in angle as
+// code = round(beta / (pi/2) * 255) (unorm_from_double, round half up). Linear in
+// angle because Max interpolates the angle linearly between azimuths, which a
+// texture environment INTERPOLATE (or bilinear filtering between texels) then does
+// exactly, and because one code is the same 0.35 degrees at every elevation, so
+// grazing lights (5 degrees) are resolved as well as steep ones. The horizon map is
+// memoised in-process and cached on disk like the ellipse fit (`cache`).
+std::mutex& horizon_memo_mutex() {
+  static std::mutex m;
+  return m;
+}
+
+Image horizon(GeneratorArgs& a) {
+  std::string field;
+  const std::string ft = a.text("field", "bumps");
+  for (const auto& n : field_names())
+    if (n == ft) field = n;
+  if (field.empty()) field = field_names()[static_cast<std::size_t>(a.integer("field", 1, 0, 4))];
+  std::string desc;
+  bumpshadow::HeightField hf = read_field(a, field, desc);
+  const int n = static_cast<int>(a.integer("azimuths", 16, 1, 1024));
+  const int index = static_cast<int>(a.integer("index", 0, 0, n - 1));
+  const std::string cache = a.text("cache", "out/cache");
+  a.finish();
+  static std::map<std::string, std::shared_ptr<const bumpshadow::HorizonMap>> memo;
+  const std::string key = desc + " | azimuths=" + std::to_string(n);
+  std::shared_ptr<const bumpshadow::HorizonMap> hm;
+  {
+    std::lock_guard<std::mutex> lock(horizon_memo_mutex());
+    auto it = memo.find(key);
+    if (it != memo.end()) hm = it->second;
+  }
+  if (!hm) {
+    auto m = std::make_shared<const bumpshadow::HorizonMap>(
+        cache == "none" ? bumpshadow::compute_horizon_map(hf, n) : bumpshadow::cached_horizon_map(hf, n, {}, cache));
+    std::lock_guard<std::mutex> lock(horizon_memo_mutex());
+    hm = memo.emplace(key, std::move(m)).first->second;
+  }
+  std::vector<std::uint8_t> codes(static_cast<std::size_t>(hm->width) * hm->height);
+  const double half_pi = 1.5707963267948966;
+  for (int y = 0; y < hm->height; ++y)
+    for (int x = 0; x < hm->width; ++x)
+      codes[static_cast<std::size_t>(y) * hm->width + x] =
+          static_cast<std::uint8_t>(unorm_from_double(std::clamp(hm->at(x, y, index) / half_pi, 0.0, 1.0), 8));
+  return byte_image(hm->width, hm->height, codes);
+}
+
 GeneratorRegistry build() {
   GeneratorRegistry r;
   r.add({"hemisphere_bump", "width=64 height=64 radius=16 border=clamp|wrap",
@@ -293,6 +347,10 @@ GeneratorRegistry build() {
          "the paper's 8-bit maps of a generated field (T1^r, T2^r, T3^r, T1^n, T2^n as bumpshadow::encode_maps), "
          "its normal map, and the exact, soft and float64-ellipse lit maps for a light",
          shadowmap});
+  r.add({"horizon", "field=bumps|INDEX (the field's keys) scale=1 azimuths=16 index=0 cache=out/cache|none",
+         "Max's horizon map of a generated field toward azimuth 2 pi index / azimuths: 8-bit, "
+         "code = round(elevation / (pi/2) * 255) (docs/bumpshadow.md §7.1)",
+         horizon});
 
   return r;
 }

@@ -610,7 +610,19 @@ class Loader {
       }
       return *v;
     }
-    return static_cast<GLenum>(eval_int(l, k, what, 0, 0xFFFFFFFFll));
+    // A number or an expression: passed to the GL unchecked, like a number. Inside
+    // it, names starting with GL_ are enum values (parameters are looked up first),
+    // so a parameter can select a token: (GL_NEAREST+filter).
+    const double v = Expression::parse(t, l.at(k), l.text).eval([this](const std::string& n) -> std::optional<double> {
+      if (auto p = lookup(n)) return p;
+      if (n.rfind("GL_", 0) == 0)
+        if (const auto e = gl::enum_value(n)) return static_cast<double>(*e);
+      return std::nullopt;
+    });
+    if (v != std::floor(v)) fail(l, k, what + " must be an integer, got " + format_number(v));
+    if (v < 0 || v > static_cast<double>(0xFFFFFFFFll))
+      fail(l, k, what + " must be in [0, 4294967295], got " + format_number(v));
+    return static_cast<GLenum>(static_cast<long long>(v));
   }
 
   void gl_call(const Line& l, const CommandDef& d) {

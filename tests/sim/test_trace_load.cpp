@@ -182,7 +182,7 @@ TEST_CASE("trace load: client images, generators and tables") {
   CHECK(load_error(V + "table a 2 x\ntable a 2 x\n") == "t.trace:3:7: image `a` is already defined at t.trace:2:7");
   CHECK(load_error(V + "table a 2 x 1 2 3 4\n") == "t.trace:2:19: too many arguments: table NAME WIDTH EXPR [EXPR EXPR EXPR]");
   CHECK(load_error(V + "table a 2\n") == "t.trace:2:10: `table` needs a name, a width and 1 to 4 expressions: table NAME WIDTH EXPR...");
-  CHECK(load_error(V + "generate h nonesuch\n") == "t.trace:2:12: unknown generator `nonesuch` (this build has bump, bumps, craters, fractal, hemisphere_bump, ridges or shadowmap)");
+  CHECK(load_error(V + "generate h nonesuch\n") == "t.trace:2:12: unknown generator `nonesuch` (this build has bump, bumps, craters, fractal, hemisphere_bump, horizon, ridges or shadowmap)");
   CHECK(load_error(V + "generate h hemisphere_bump radius\n") == "t.trace:2:28: expected key=value, got `radius`");
   CHECK(load_error(V + "generate h hemisphere_bump colour=3\n") == "t.trace:2:28: unknown key `colour`");
   CHECK(load_error(V + "generate h hemisphere_bump border=mirror\n") == "t.trace:2:35: `border` must be clamp or wrap, got `mirror`");
@@ -329,4 +329,21 @@ TEST_CASE("trace load: the bytes read in all, includes expanded, are capped") {
     CHECK(std::string(e.what()) == cat((d / "main.trace").string(), ":23:9: the trace reads more than 67108864 bytes (includes expanded)"));
   }
   fs::remove_all(d);
+}
+
+TEST_CASE("trace load: an enum argument may be an expression over parameters and GL_ names") {
+  const std::string t = V + "param filter 1\nglTexParameteri GL_TEXTURE_2D GL_TEXTURE_MIN_FILTER (GL_NEAREST+filter)\n";
+  Program p = load_trace_text(t, "t.trace", {});
+  REQUIRE(p.steps.size() == 1);
+  CHECK(p.steps[0].args[2].i == 0x2601);  // GL_LINEAR
+  LoadOptions opt;
+  opt.sets = {{"filter", "0"}};
+  p = load_trace_text(t, "t.trace", opt);
+  CHECK(p.steps[0].args[2].i == 0x2600);  // GL_NEAREST
+  // Parameters are looked up first; unknown GL_ names and fractions are errors at the argument.
+  CHECK(load_error(V + "glTexParameteri GL_TEXTURE_2D GL_TEXTURE_MIN_FILTER (GL_NOPE+1)\n").find("GL_NOPE") != std::string::npos);
+  CHECK(load_error(V + "glTexParameteri GL_TEXTURE_2D GL_TEXTURE_MIN_FILTER (GL_NEAREST+0.5)\n") ==
+        "t.trace:2:53: `param` of glTexParameteri must be an integer, got 9728.5");
+  // GL_ names are not known outside enum positions.
+  CHECK(load_error(V + "glClearColor (GL_NEAREST) 0 0 0\n").find("GL_NEAREST") != std::string::npos);
 }

@@ -1,0 +1,88 @@
+// `ffsim bench --perf` (sim/bench/perf.cpp) on a tiny configuration: it runs every
+// stage set-up of traces/perf/, counts the fragments each pass produces and writes
+// its CSV. The fragment counts are derived by hand: a full-window quad or CopyPixels
+// of a 32 x 32 window makes 32 * 32 = 1024 fragments, the upload 32 * 32 texels.
+// Timings are never checked (benchmarks, not timed tests).
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+
+#include "sim/cli/cli.h"
+
+using namespace ffsim;
+namespace fs = std::filesystem;
+
+namespace {
+struct Run {
+  int code;
+  std::string out, err;
+};
+Run run(std::vector<std::string> args) {
+  std::ostringstream out, err;
+  const int code = cli::run(args, out, err);
+  return {code, out.str(), err.str()};
+}
+std::vector<std::vector<std::string>> read_csv(const fs::path& p) {
+  std::vector<std::vector<std::string>> rows;
+  std::ifstream f(p);
+  std::string line;
+  while (std::getline(f, line)) {
+    std::vector<std::string> cells;
+    std::string cell;
+    bool quoted = false;
+    for (char c : line) {
+      if (c == '"') quoted = !quoted;
+      else if (c == ',' && !quoted) {
+        cells.push_back(cell);
+        cell.clear();
+      } else cell += c;
+    }
+    cells.push_back(cell);
+    rows.push_back(cells);
+  }
+  return rows;
+}
+}  // namespace
+
+TEST_CASE("bench --perf: every stage runs and counts its fragments") {
+  const fs::path dir = fs::temp_directory_path() / ("ffsim-perf-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const Run r = run({"bench", "--perf", "--only", "stages", "--size", "32", "--repeat", "1", "--traces",
+                     FFSIM_SOURCE_DIR "/traces", "--out", dir.string()});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(r.out.find("Per-stage throughput, one core, 32x32 window") != std::string::npos);
+  const auto rows = read_csv(dir / "perf_stages.csv");
+  REQUIRE(rows.size() == 10);  // header + 9 stages
+  CHECK(rows[0][0] == "stage");
+  CHECK(rows[0][2] == "fragments_per_pass");
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    INFO(rows[i][0]);
+    REQUIRE(rows[i].size() == rows[0].size());
+    CHECK(rows[i][1] == "32");
+    CHECK(std::stod(rows[i][2]) == 1024);  // every fragment of the window, exactly once
+    CHECK(std::stod(rows[i][6]) > 0);      // Mfragments/s is a positive number
+  }
+  CHECK(fs::exists(dir / "perf.md"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("bench --perf: bad arguments are one-line usage errors") {
+  for (const auto& args : std::vector<std::vector<std::string>>{{"bench", "--perf", "--repeat", "0"},
+                                                                {"bench", "--perf", "--only", "everything"},
+                                                                {"bench", "--perf", "--threads", "1,x"},
+                                                                {"bench", "--perf", "--size"},
+                                                                {"bench", "--perf", "--frob"}}) {
+    const Run r = run(args);
+    CHECK(r.code == 2);
+    CHECK(r.err.rfind("ffsim bench --perf: ", 0) == 0);
+    CHECK(r.err.find('\n') == r.err.size() - 1);
+  }
+  const Run missing = run({"bench", "--perf", "--only", "stages", "--size", "16", "--repeat", "1", "--traces", "/nonexistent",
+                           "--out", (fs::temp_directory_path() / "ffsim-perf-missing").string()});
+  CHECK(missing.code == 1);
+  CHECK(missing.err.find("/nonexistent/perf/quad-replace.trace") != std::string::npos);
+}
