@@ -545,7 +545,7 @@ class Context {
   std::shared_ptr<WorkerPool> pool_;
   std::vector<SpanScratch> band_scratch_;
   std::vector<FragmentSpan> band_spans_;
-  std::vector<std::uint64_t> band_fast_runs_;
+  std::vector<std::uint64_t> band_fast_runs_, band_fragments_;  // summed after each split
   // A run shaded at once into `span` (fixed profiles); false when the run needs
   // the generic per-fragment path (float profiles, λ needed, the probe inside it).
   bool shade_run_fast(const ShadingState& st, const ShadingPlan& plan, const std::array<const WindowVertex*, 3>& tv,

@@ -258,7 +258,10 @@ void Context::draw_polygon(std::vector<ClipVertex> poly, std::size_t provoking, 
       // The span path (sim/draw_span.cpp), or every fragment on its own below.
       auto write = [&] {
         if (band < 0) write_fragments(span);
-        else run_fragment_plan(*fragment_current_plan_, fragment_current_constants_, span, buffers, fb_.width());
+        else {  // write_fragments without the plan update and the probe (both done or off)
+          band_fragments_[static_cast<std::size_t>(band)] += static_cast<std::uint64_t>(span.count);
+          run_fragment_plan(*fragment_current_plan_, fragment_current_constants_, span, buffers, fb_.width());
+        }
       };
       if (fast_paths_ && shade_run_fast(st, plan, tv, cov, run, flat, shade, span,
                                         band < 0 ? span_scratch_ : band_scratch_[static_cast<std::size_t>(band)])) {
@@ -357,6 +360,7 @@ void Context::draw_polygon(std::vector<ClipVertex> poly, std::size_t provoking, 
           band_scratch_.resize(static_cast<std::size_t>(bands));
           band_spans_.resize(static_cast<std::size_t>(bands));
           band_fast_runs_.resize(static_cast<std::size_t>(bands));
+          band_fragments_.resize(static_cast<std::size_t>(bands));
         }
         pool_->run(bands, [&](int b) {
           const int y0 = r0 + static_cast<int>(std::int64_t{r1 - r0} * b / bands);
@@ -366,6 +370,7 @@ void Context::draw_polygon(std::vector<ClipVertex> poly, std::size_t provoking, 
                              [&](const TriangleCoverage& cov, const CoverageRun& run) { shade_run(cov, run, bs, b); });
         });
         for (std::uint64_t& k : band_fast_runs_) fast_runs_ += std::exchange(k, 0);
+        for (std::uint64_t& k : band_fragments_) fragments_written_ += std::exchange(k, 0);
         ++split_triangles_;
         continue;
       }

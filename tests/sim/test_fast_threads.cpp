@@ -16,7 +16,11 @@ TEST_CASE("fast threads: row bands on 2 and 3 threads == one thread, random scen
   SceneOptions opt;
   opt.triangles = 3;
   for (const char* profile : kFastProfiles)
+#ifdef FFSIM_SANITIZE
+    for (std::uint32_t seed = 300; seed < 303; ++seed) {
+#else
     for (std::uint32_t seed = 300; seed < 306; ++seed) {
+#endif
       Context one(profile_named(profile), 128, 96);
       draw_random_scene(one, seed, opt);
       for (int threads : {2, 3})
@@ -27,11 +31,12 @@ TEST_CASE("fast threads: row bands on 2 and 3 threads == one thread, random scen
           draw_random_scene(many, seed, opt);
           INFO("profile ", profile, " seed ", seed, " threads ", threads, " fast ", fast);
           REQUIRE(buffer_hashes(many) == buffer_hashes(one));
+          CHECK(many.fragments_written() == one.fragments_written());
           splits += many.split_triangles();
         }
       CHECK(one.split_triangles() == 0);
     }
-  CHECK(splits > 50);
+  CHECK(splits > 25);
 }
 
 TEST_CASE("fast threads: the probe keeps one thread") {
