@@ -20,6 +20,9 @@ constexpr int kChunk = 64;  // fragments per pass
 template <std::int32_t kM, class Acc>
 struct Kernel {
   using P = std::conditional_t<kM != 0 && kM <= 2047, std::int32_t, std::int64_t>;
+  // Registers are left uninitialised here: run() zeroes the first n entries of
+  // each chunk (short runs of small triangles must not pay for 12 KB of zeroes).
+  Kernel(const CombinerPlan& p, std::int32_t m) : plan(p), M_rt(m) {}
   const CombinerPlan& plan;
   const std::int32_t M_rt;
   std::int32_t M() const { return kM ? kM : M_rt; }
@@ -200,7 +203,8 @@ struct Kernel {
     for (int first = 0; first < in.count; first += kChunk) {
       const int n = std::min(kChunk, in.count - first);
       const auto f0 = static_cast<std::size_t>(first);
-      std::memset(reg, 0, sizeof reg);
+      for (auto& r : reg)  // the reference starts every fragment from zeroed registers
+        for (auto& comp : r) std::fill_n(comp, n, 0);
       set_constants(plan.constant_codes, n);
       for (int c = 0; c < 3; ++c) std::fill_n(reg[kFog][c], n, fog[c]);
       if (in.fog_factor) {
@@ -233,7 +237,7 @@ struct Kernel {
 template <std::int32_t kM, class Acc>
 void run_kernel(const CombinerPlan& plan, const CombinerInputsFixed& in, const std::array<double, 4>& fog,
                 std::uint16_t* out) {
-  Kernel<kM, Acc> k{plan, plan.M, {}};  // ~30 KB of stack
+  Kernel<kM, Acc> k(plan, plan.M);  // ~30 KB of stack
   k.run(in, fog, out);
 }
 
