@@ -77,6 +77,11 @@ struct TextureUnitBinding {
 
 inline constexpr int kMaxTextureUnits = 4;
 
+struct WindowVertex;       // sim/draw_span.h
+class WorkerPool;          // sim/worker_pool.h
+struct TriangleCoverage;   // pipeline/raster/triangle.h
+struct CoverageRun;
+
 class Context {
  public:
   // Throws FramebufferError for an impossible framebuffer size.
@@ -378,6 +383,20 @@ class Context {
   std::uint64_t fragments_written() const { return fragments_written_; }
 
 
+  // ==== [issue 10] performance ====
+  // Specialised span paths (docs/performance.md): a run of fragments is shaded
+  // at once (SoA interpolation by exact DDA, span texture sampling, integer
+  // texture-environment and combiner kernels). Off: every fragment takes the
+  // generic per-fragment path. Results are identical either way; the
+  // tests/*/test_fast_*.cpp tests draw random scenes both ways and compare.
+  void set_fast_paths(bool on) { fast_paths_ = on; }
+  bool fast_paths() const { return fast_paths_; }
+  // Runs of fragments the span path has shaded so far (tests check it is taken).
+  std::uint64_t fast_runs() const { return fast_runs_; }
+  // Triangles whose rows were split across threads (threads() > 1, no probe,
+  // bounding box of at least kSplitFragments pixels).
+  std::uint64_t split_triangles() const { return split_triangles_; }
+
  private:
   bool set_capability(GLenum cap, bool on, const char* function);
   MatrixStack& current_stack();
@@ -508,6 +527,30 @@ class Context {
   int threads_ = 1;
   ProbeLog probe_;
   std::uint64_t fragments_written_ = 0;
+
+  // ==== [issue 10] state ====
+  bool fast_paths_ = true;
+  std::uint64_t fast_runs_ = 0, split_triangles_ = 0;
+  // Scratch of the span path, reused from run to run (sim/draw_span.cpp).
+  struct SpanScratch {
+    std::vector<std::uint16_t> primary, secondary;
+    std::array<std::vector<std::uint16_t>, kMaxTextureUnits> texels;
+    std::vector<double> s, t;
+    std::vector<std::uint32_t> lane;
+  };
+  SpanScratch span_scratch_;
+  // Threads: the pool (rebuilt when threads() changes) and per-band scratch.
+  // A triangle whose bounding box covers at least kSplitFragments pixels is split.
+  static constexpr std::int64_t kSplitFragments = 4096;
+  std::shared_ptr<WorkerPool> pool_;
+  std::vector<SpanScratch> band_scratch_;
+  std::vector<FragmentSpan> band_spans_;
+  std::vector<std::uint64_t> band_fast_runs_, band_fragments_;  // summed after each split
+  // A run shaded at once into `span` (fixed profiles); false when the run needs
+  // the generic per-fragment path (float profiles, λ needed, the probe inside it).
+  bool shade_run_fast(const ShadingState& st, const ShadingPlan& plan, const std::array<const WindowVertex*, 3>& tv,
+                      const TriangleCoverage& cov, const CoverageRun& run, bool flat, bool shade, FragmentSpan& span,
+                      SpanScratch& scratch);
 
 };
 

@@ -12,6 +12,7 @@
 //     s = Σ w_k·s_k/w_clip_k / Σ w_k·q_k/w_clip_k  (then s/q is what is sampled).
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "pipeline/combiners/register_combiners.h"
 #include "pipeline/number/snorm.h"
@@ -19,18 +20,12 @@
 #include "sim/probe.h"
 #include "pipeline/raster/triangle.h"
 #include "sim/context.h"
+#include "sim/draw_span.h"
+#include "sim/worker_pool.h"
 
 namespace ffsim {
 
 namespace {
-
-struct WindowVertex {
-  SnappedVertex p;
-  std::array<std::uint32_t, 4> color_code{}, secondary_code{};
-  std::array<double, 4> color{}, secondary{};
-  std::uint32_t depth = 0;
-  std::array<std::array<double, 3>, kMaxTextureUnits> tcw{};  // s/w, t/w, q/w
-};
 
 double to_color_value(double v, Arithmetic a) {
   return a == Arithmetic::Float32 ? static_cast<double>(static_cast<float>(v)) : v;
@@ -230,18 +225,51 @@ void Context::draw_polygon(std::vector<ClipVertex> poly, std::size_t provoking, 
     return static_cast<int>(std::clamp<std::int64_t>(std::int64_t{a} - origin, -(std::int64_t{1} << 30), std::int64_t{1} << 30));
   };
   const int cx0 = rel(0, vx), cy0 = rel(0, vy), cx1 = rel(fb_.width(), vx), cy1 = rel(fb_.height(), vy);
+  // Threads (docs/performance.md): the rows of a large triangle are split into
+  // bands shaded concurrently. Rows are disjoint pixels and every per-fragment
+  // operation reads and writes only its own pixel, so each pixel sees the same
+  // fragments in the same order as with one thread. Shared state is made ready
+  // first (fragment plan, combiner plan), then only read; the probe forces one
+  // thread (it records in order).
+  const bool may_split = threads_ > 1 && !probe_.enabled();
+  FragmentBuffers buffers;
+  if (may_split) {
+    update_fragment_plan();
+    if (combiners_.enabled) combiner_plan();
+    if (fb_.format().float_color()) buffers.values = fb_.values().data();
+    else buffers.codes = fb_.codes().data();
+    if (fb_.has_stencil()) buffers.stencil = fb_.stencil().data();
+    if (fb_.has_depth()) buffers.depth = fb_.depth().data();
+    if (!pool_ || pool_->threads() != threads_) pool_ = std::make_shared<WorkerPool>(threads_);
+  }
+  FragmentSpan span;  // reused from run to run
   for (std::size_t i = 1; i + 1 < wv.size(); ++i) {
     const std::array<const WindowVertex*, 3> tv{&wv[0], &wv[i], &wv[i + 1]};
-    auto emit = [&](const TriangleCoverage& cov, const CoverageRun& run) {
+    // One run into `span`; `band` >= 0: on a worker (no probe, plans ready).
+    auto shade_run = [&](const TriangleCoverage& cov, const CoverageRun& run, FragmentSpan& span, int band) {
       const std::int64_t A = cov.area;
       const int n = static_cast<int>(run.weight.size());
-      FragmentSpan span;
       span.y = run.y + vy;
       span.x0 = run.x0 + vx;
       span.count = n;
       if (arith == Arithmetic::Fixed) span.codes.resize(4 * static_cast<std::size_t>(n));
       else span.values.resize(4 * static_cast<std::size_t>(n));
       if (has_depth) span.depth.resize(static_cast<std::size_t>(n));
+      // The span path (sim/draw_span.cpp), or every fragment on its own below.
+      auto write = [&] {
+        if (band < 0) write_fragments(span);
+        else {  // write_fragments without the plan update and the probe (both done or off)
+          band_fragments_[static_cast<std::size_t>(band)] += static_cast<std::uint64_t>(span.count);
+          run_fragment_plan(*fragment_current_plan_, fragment_current_constants_, span, buffers, fb_.width());
+        }
+      };
+      if (fast_paths_ && shade_run_fast(st, plan, tv, cov, run, flat, shade, span,
+                                        band < 0 ? span_scratch_ : band_scratch_[static_cast<std::size_t>(band)])) {
+        if (band < 0) ++fast_runs_;
+        else ++band_fast_runs_[static_cast<std::size_t>(band)];
+        write();
+        return;
+      }
       for (int f = 0; f < n; ++f) {
         const auto& w = run.weight[static_cast<std::size_t>(f)];
         if (has_depth) span.depth[f] = interpolate_code(w, A, tv[0]->depth, tv[1]->depth, tv[2]->depth);
@@ -308,7 +336,7 @@ void Context::draw_polygon(std::vector<ClipVertex> poly, std::size_t provoking, 
           std::string note;
           if (probed) shade_probe_ = &note;
           out = shade_fragment(st, plan, primary, secondary, tc);
-          shade_probe_ = nullptr;
+          if (probed) shade_probe_ = nullptr;  // (workers never probe: no shared write)
           if (probed) probe_.record("shading", "primary " + describe_rgba(primary, st.color) + note + "\n    fragment colour " +
                                                    describe_rgba(out, st.color));
         }
@@ -317,9 +345,38 @@ void Context::draw_polygon(std::vector<ClipVertex> poly, std::size_t provoking, 
           else span.values[4 * static_cast<std::size_t>(f) + k] = out.value[k];
         }
       }
-      write_fragments(span);
+      write();
     };
-    rasterize_triangle({tv[0]->p, tv[1]->p, tv[2]->p}, S, cx0, cy0, cx1, cy1, emit);
+    const std::array<SnappedVertex, 3> sv{tv[0]->p, tv[1]->p, tv[2]->p};
+    if (may_split) {
+      // Rows the triangle's bounding box may cover, clipped to the window.
+      const std::int64_t lo = std::min({sv[0].y, sv[1].y, sv[2].y}) >> S, hi = (std::max({sv[0].y, sv[1].y, sv[2].y}) >> S) + 1;
+      const std::int64_t wlo = std::min({sv[0].x, sv[1].x, sv[2].x}) >> S, whi = (std::max({sv[0].x, sv[1].x, sv[2].x}) >> S) + 1;
+      const int r0 = static_cast<int>(std::max<std::int64_t>(lo, cy0)), r1 = static_cast<int>(std::min<std::int64_t>(hi + 1, cy1));
+      const std::int64_t area = std::int64_t{std::max(0, r1 - r0)} * std::clamp<std::int64_t>(whi - wlo, 0, cx1 - cx0);
+      if (area >= kSplitFragments && r1 - r0 >= 4 * threads_) {
+        const int bands = 4 * threads_;  // more bands than threads: a triangle's rows differ in length
+        if (band_scratch_.size() < static_cast<std::size_t>(bands)) {
+          band_scratch_.resize(static_cast<std::size_t>(bands));
+          band_spans_.resize(static_cast<std::size_t>(bands));
+          band_fast_runs_.resize(static_cast<std::size_t>(bands));
+          band_fragments_.resize(static_cast<std::size_t>(bands));
+        }
+        pool_->run(bands, [&](int b) {
+          const int y0 = r0 + static_cast<int>(std::int64_t{r1 - r0} * b / bands);
+          const int y1 = r0 + static_cast<int>(std::int64_t{r1 - r0} * (b + 1) / bands);
+          FragmentSpan& bs = band_spans_[static_cast<std::size_t>(b)];
+          rasterize_triangle(sv, S, cx0, y0, cx1, y1,
+                             [&](const TriangleCoverage& cov, const CoverageRun& run) { shade_run(cov, run, bs, b); });
+        });
+        for (std::uint64_t& k : band_fast_runs_) fast_runs_ += std::exchange(k, 0);
+        for (std::uint64_t& k : band_fragments_) fragments_written_ += std::exchange(k, 0);
+        ++split_triangles_;
+        continue;
+      }
+    }
+    rasterize_triangle(sv, S, cx0, cy0, cx1, cy1,
+                       [&](const TriangleCoverage& cov, const CoverageRun& run) { shade_run(cov, run, span, -1); });
   }
 }
 

@@ -74,28 +74,41 @@ TriangleCoverage rasterize_triangle(const std::array<SnappedVertex, 3>& vin, int
   y0 = std::max<std::int64_t>(y0, clip_y0);
   x1 = std::min<std::int64_t>(x1, clip_x1 - 1);
   y1 = std::min<std::int64_t>(y1, clip_y1 - 1);
+  // Each row's run is solved per edge instead of testing every pixel of the
+  // bounding box: along a row E_k(x) = A_k·x + C_k exactly (A_k = a_k·2^S), and
+  // "inside" is E_k >= t_k with t_k = 0 on an inclusive edge, 1 otherwise
+  // (integers), so each edge bounds x by one exact floor/ceil division. The run
+  // is the intersection: the same fragments and weights as evaluating every
+  // centre (tests/pipeline/test_fast_raster.cpp compares with that loop).
   CoverageRun run;
+  std::array<std::int64_t, 3> step{}, t{};
+  for (int k = 0; k < 3; ++k) {
+    step[k] = e[k].a * one;
+    t[k] = e[k].inclusive ? 0 : 1;
+  }
   for (std::int64_t y = y0; y <= y1; ++y) {
     const std::int64_t py = y * one + half;
-    run.weight.clear();
-    run.y = static_cast<int>(y);
-    for (std::int64_t x = x0; x <= x1; ++x) {
-      const std::int64_t px = x * one + half;
-      std::array<std::int64_t, 3> w{};
-      bool in = true;
-      for (int k = 0; k < 3 && in; ++k) {
-        const std::int64_t ek = e[k].a * px + e[k].b * py + e[k].c;
-        in = ek > 0 || (ek == 0 && e[k].inclusive);
-        w[idx[k]] = ek;
-      }
-      if (in) {
-        if (run.weight.empty()) run.x0 = static_cast<int>(x);
-        run.weight.push_back(w);
-      } else if (!run.weight.empty()) {
-        break;  // a triangle's row is one contiguous run
-      }
+    std::int64_t lo = x0, hi = x1;
+    std::array<std::int64_t, 3> c0{};  // E_k at x = 0 of this row
+    for (int k = 0; k < 3 && lo <= hi; ++k) {
+      c0[k] = e[k].a * half + e[k].b * py + e[k].c;
+      if (step[k] > 0) lo = std::max(lo, ceil_div(t[k] - c0[k], step[k]));
+      else if (step[k] < 0) hi = std::min(hi, floor_div(c0[k] - t[k], -step[k]));
+      else if (c0[k] < t[k]) hi = lo - 1;  // horizontal edge with the row outside
     }
-    if (!run.weight.empty()) emit(cov, run);
+    if (lo > hi) continue;
+    run.y = static_cast<int>(y);
+    run.x0 = static_cast<int>(lo);
+    run.weight.resize(static_cast<std::size_t>(hi - lo + 1));
+    std::array<std::int64_t, 3> w{};
+    for (int k = 0; k < 3; ++k) w[idx[k]] = step[k] * lo + c0[k];
+    std::array<std::int64_t, 3> dw{};
+    for (int k = 0; k < 3; ++k) dw[idx[k]] = step[k];
+    for (auto& wi : run.weight) {
+      wi = w;
+      for (int k = 0; k < 3; ++k) w[k] += dw[k];
+    }
+    emit(cov, run);
   }
   return cov;
 }
@@ -105,6 +118,48 @@ std::uint32_t interpolate_code(const std::array<std::int64_t, 3>& w, std::int64_
   __extension__ typedef __int128 i128;
   const i128 num = i128{w[0]} * k0 + i128{w[1]} * k1 + i128{w[2]} * k2;
   return static_cast<std::uint32_t>((2 * num + area) / (2 * i128{area}));
+}
+
+void interpolate_code_run(const std::array<std::int64_t, 3>& w0, const std::array<std::int64_t, 3>& dwdx,
+                          std::int64_t area, std::uint32_t k0, std::uint32_t k1, std::uint32_t k2, int n,
+                          std::uint32_t* out) {
+  if (n <= 0) return;
+  __extension__ typedef __int128 i128;
+  const i128 D = 2 * i128{area};
+  const i128 x0 = 2 * (i128{w0[0]} * k0 + i128{w0[1]} * k1 + i128{w0[2]} * k2) + area;  // >= 0 inside
+  const i128 step = 2 * (i128{dwdx[0]} * k0 + i128{dwdx[1]} * k1 + i128{dwdx[2]} * k2);
+  // Floor division by D > 0 for both signs; remainders in [0, D).
+  auto floor_div = [&](i128 a, i128& rem) {
+    i128 q = a / D;
+    rem = a - q * D;
+    if (rem < 0) {
+      rem += D;
+      --q;
+    }
+    return q;
+  };
+  i128 r0 = 0, dr0 = 0;
+  const i128 q0 = floor_div(x0, r0);
+  if (n == 1) {  // no step (a one-fragment run of a sliver may have a huge gradient)
+    out[0] = static_cast<std::uint32_t>(q0);
+    return;
+  }
+  const i128 dq0 = floor_div(step, dr0);
+  // Every fragment of the run is inside the triangle, so every quotient is a
+  // code (< 2^32) and the remainders stay below D < 2^62: int64 suffices.
+  std::int64_t q = static_cast<std::int64_t>(q0), r = static_cast<std::int64_t>(r0);
+  const std::int64_t dq = static_cast<std::int64_t>(dq0), dr = static_cast<std::int64_t>(dr0);
+  const std::int64_t d = static_cast<std::int64_t>(D);
+  for (int i = 0;; ++i) {
+    out[i] = static_cast<std::uint32_t>(q);
+    if (i + 1 == n) break;
+    q += dq;
+    r += dr;
+    if (r >= d) {
+      r -= d;
+      ++q;
+    }
+  }
 }
 
 }  // namespace ffsim

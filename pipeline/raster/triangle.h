@@ -63,4 +63,13 @@ TriangleCoverage rasterize_triangle(const std::array<SnappedVertex, 3>& v, int s
 std::uint32_t interpolate_code(const std::array<std::int64_t, 3>& w, std::int64_t area, std::uint32_t k0,
                                std::uint32_t k1, std::uint32_t k2);
 
+// interpolate_code at the n fragments of a run: w0 the weights at the first,
+// dwdx added per step to the right (CoverageRun/TriangleCoverage). The same
+// values, by an exact DDA: the quotient and remainder of (2·num + A) / 2A are
+// carried from fragment to fragment (num grows by Σ dwdx_k·k_k per step), with
+// 128-bit arithmetic only once per run (docs/performance.md).
+void interpolate_code_run(const std::array<std::int64_t, 3>& w0, const std::array<std::int64_t, 3>& dwdx,
+                          std::int64_t area, std::uint32_t k0, std::uint32_t k1, std::uint32_t k2, int n,
+                          std::uint32_t* out);
+
 }  // namespace ffsim

@@ -1,6 +1,7 @@
 #include "pipeline/texenv/texenv.h"
 
 #include <algorithm>
+#include <type_traits>
 
 #include "pipeline/number/unorm.h"
 
@@ -253,6 +254,180 @@ Rgba texture_environment(const TexEnvState& env, const Rgba& previous, const Rgb
     out.value[c] = fmt.arith == Arithmetic::Float32 ? static_cast<double>(static_cast<float>(v)) : v;
   }
   return out;
+}
+
+namespace {
+
+enum class SpanOp : std::uint8_t { Keep, Texel, Mul, Decal, Blend, AddSat };
+
+template <std::uint32_t kM>
+void env_span_channels(const std::array<SpanOp, 4>& op, const std::array<std::uint32_t, 4>& cc, std::uint32_t m_rt,
+                       const std::uint16_t* prev, const std::uint16_t* tex, int n, std::uint16_t* out) {
+  using U = std::conditional_t<kM == 255, std::uint32_t, std::uint64_t>;
+  const U m = kM ? kM : m_rt;
+  // v = x / m^2 exactly; rounded half up once to the colour width: floor(v·m + 1/2).
+  auto round2 = [m](U x) { return static_cast<std::uint16_t>((2 * x + m) / (2 * m)); };
+  for (int c = 0; c < 4; ++c) {
+    const U k = cc[c];
+    switch (op[c]) {
+      case SpanOp::Keep:
+        if (out != prev)
+          for (int f = 0; f < n; ++f) out[4 * f + c] = prev[4 * f + c];
+        break;
+      case SpanOp::Texel:
+        for (int f = 0; f < n; ++f) out[4 * f + c] = tex[4 * f + c];
+        break;
+      case SpanOp::Mul:  // Cf·Ct
+        for (int f = 0; f < n; ++f) out[4 * f + c] = round2(U{prev[4 * f + c]} * tex[4 * f + c]);
+        break;
+      case SpanOp::Decal:  // Cf·(1 − At) + Ct·At
+        for (int f = 0; f < n; ++f) {
+          const U a = tex[4 * f + 3];
+          out[4 * f + c] = round2(U{prev[4 * f + c]} * (m - a) + U{tex[4 * f + c]} * a);
+        }
+        break;
+      case SpanOp::Blend:  // Cf·(1 − Ct) + Cc·Ct
+        for (int f = 0; f < n; ++f) {
+          const U t = tex[4 * f + c];
+          out[4 * f + c] = round2(U{prev[4 * f + c]} * (m - t) + k * t);
+        }
+        break;
+      case SpanOp::AddSat:  // min(1, Cf + Ct), exact on codes of one width
+        for (int f = 0; f < n; ++f) out[4 * f + c] = static_cast<std::uint16_t>(std::min<U>(U{prev[4 * f + c]} + tex[4 * f + c], m));
+        break;
+    }
+  }
+}
+
+}  // namespace
+
+namespace {
+
+// COMBINE on codes of one width m (combine() above on k/m operands). A function
+// value is N/D with D = m (REPLACE, ADD, SUBTRACT), 2m (ADD_SIGNED) or m^2
+// (MODULATE, INTERPOLATE, DOT3); after × scale it is clamped to [0, 1] and
+// rounded half up: code = floor(N·m/D + 1/2).
+struct CombineInt {
+  std::int64_t m;
+  std::int64_t operand(GLenum op, const std::uint16_t* v, int c) const {
+    switch (op) {
+      case gl::ONE_MINUS_SRC_COLOR: return m - v[c];
+      case gl::SRC_ALPHA: return v[3];
+      case gl::ONE_MINUS_SRC_ALPHA: return m - v[3];
+      default: return v[c];  // SRC_COLOR
+    }
+  }
+  // clamp01(N/D) rounded to a code, for D in {m, 2m, m^2}.
+  std::uint16_t finish(std::int64_t N, std::int64_t D) const {
+    if (N <= 0) return 0;
+    if (N >= D) return static_cast<std::uint16_t>(m);
+    return static_cast<std::uint16_t>((2 * N * m + D) / (2 * D));
+  }
+  std::uint16_t function(GLenum f, std::int64_t a0, std::int64_t a1, std::int64_t a2, std::int64_t s) const {
+    switch (f) {
+      case gl::REPLACE: return finish(s * a0, m);
+      case gl::ADD: return finish(s * (a0 + a1), m);
+      case gl::ADD_SIGNED: return finish(s * (2 * a0 + 2 * a1 - m), 2 * m);
+      case gl::INTERPOLATE: return finish(s * (a0 * a2 + a1 * (m - a2)), m * m);
+      case gl::SUBTRACT: return finish(s * (a0 - a1), m);
+      default: return finish(s * a0 * a1, m * m);  // MODULATE
+    }
+  }
+};
+
+bool combine_span_fixed(const TexEnvState& env, const std::uint16_t* previous, const std::uint16_t* primary,
+                        const std::uint16_t* texel, int n, int bits, std::uint16_t* out) {
+  const CombineInt k{static_cast<std::int64_t>(unorm_max(bits))};
+  std::uint16_t cc[4];
+  for (int c = 0; c < 4; ++c) cc[c] = static_cast<std::uint16_t>(unorm_from_double(env.color[c], bits));
+  const GLenum frgb = env.combine_rgb;
+  const bool dot3 = is_dot3(frgb);
+  const bool dot3_ext = frgb == gl::DOT3_RGB_EXT || frgb == gl::DOT3_RGBA_EXT;
+  const bool dot3_rgba = frgb == gl::DOT3_RGBA || frgb == gl::DOT3_RGBA_EXT;
+  const std::int64_t srgb = static_cast<int>(env.rgb_scale), salpha = static_cast<int>(env.alpha_scale);
+  auto src = [&](GLenum which, const std::uint16_t* prev, const std::uint16_t* prim, const std::uint16_t* tex) {
+    switch (which) {
+      case gl::TEXTURE: return tex;
+      case gl::CONSTANT: return static_cast<const std::uint16_t*>(cc);
+      case gl::PRIMARY_COLOR: return prim;
+      default: return prev;  // PREVIOUS
+    }
+  };
+  for (int f = 0; f < n; ++f) {
+    const std::size_t o = 4 * static_cast<std::size_t>(f);
+    std::uint16_t prev[4];
+    for (int c = 0; c < 4; ++c) prev[c] = previous[o + c];  // `out` may alias `previous`
+    const std::uint16_t* rgb[3];
+    const std::uint16_t* alpha[3];
+    for (int i = 0; i < 3; ++i) {
+      rgb[i] = src(env.source_rgb[i], prev, primary + o, texel + o);
+      alpha[i] = src(env.source_alpha[i], prev, primary + o, texel + o);
+    }
+    std::uint16_t r[4];
+    if (dot3) {
+      // 4·Σ (a0 − ½)(a1 − ½) = Σ (2k0 − m)(2k1 − m) / m².
+      std::int64_t d = 0;
+      for (int c = 0; c < 3; ++c)
+        d += (2 * k.operand(env.operand_rgb[0], rgb[0], c) - k.m) * (2 * k.operand(env.operand_rgb[1], rgb[1], c) - k.m);
+      const std::uint16_t v = k.finish(dot3_ext ? d : d * srgb, k.m * k.m);
+      r[0] = r[1] = r[2] = v;
+      if (dot3_rgba) r[3] = k.finish(dot3_ext ? d : d * salpha, k.m * k.m);
+    } else {
+      for (int c = 0; c < 3; ++c)
+        r[c] = k.function(frgb, k.operand(env.operand_rgb[0], rgb[0], c), k.operand(env.operand_rgb[1], rgb[1], c),
+                          k.operand(env.operand_rgb[2], rgb[2], c), srgb);
+    }
+    if (!dot3_rgba)
+      r[3] = k.function(env.combine_alpha, k.operand(env.operand_alpha[0], alpha[0], 3),
+                        k.operand(env.operand_alpha[1], alpha[1], 3), k.operand(env.operand_alpha[2], alpha[2], 3),
+                        salpha);
+    for (int c = 0; c < 4; ++c) out[o + c] = r[c];
+  }
+  return true;
+}
+
+}  // namespace
+
+bool texture_environment_span_fixed(const TexEnvState& env, BaseFormat base, int texel_bits,
+                                    const std::uint16_t* previous, const std::uint16_t* primary,
+                                    const std::uint16_t* texel, int n, const ColorFormat& fmt, std::uint16_t* out) {
+  if (!fmt.fixed() || texel_bits != fmt.bits) return false;
+  if (env.mode == gl::COMBINE) return combine_span_fixed(env, previous, primary, texel, n, fmt.bits, out);
+  // The classic() table above, per channel.
+  const bool hc = has_color(base), ha = has_alpha(base);
+  std::array<SpanOp, 4> op{SpanOp::Keep, SpanOp::Keep, SpanOp::Keep, SpanOp::Keep};
+  auto rgb = [&](SpanOp o) { op[0] = op[1] = op[2] = o; };
+  switch (env.mode) {
+    case gl::REPLACE:
+      if (hc) rgb(SpanOp::Texel);
+      if (ha) op[3] = SpanOp::Texel;
+      break;
+    case gl::MODULATE:
+      if (hc) rgb(SpanOp::Mul);
+      if (ha) op[3] = SpanOp::Mul;
+      break;
+    case gl::DECAL:
+      if (base == BaseFormat::RGB) rgb(SpanOp::Texel);
+      if (base == BaseFormat::RGBA) rgb(SpanOp::Decal);
+      break;
+    case gl::BLEND:
+      if (hc) rgb(SpanOp::Blend);
+      if (base == BaseFormat::Intensity) op[3] = SpanOp::Blend;
+      else if (ha) op[3] = SpanOp::Mul;
+      break;
+    case gl::ADD:
+      if (hc) rgb(SpanOp::AddSat);
+      if (base == BaseFormat::Intensity) op[3] = SpanOp::AddSat;
+      else if (ha) op[3] = SpanOp::Mul;
+      break;
+    default: return false;
+  }
+  std::array<std::uint32_t, 4> cc{};
+  for (int c = 0; c < 4; ++c) cc[c] = unorm_from_double(env.color[c], fmt.bits);
+  const std::uint32_t m = unorm_max(fmt.bits);
+  if (m == 255) env_span_channels<255>(op, cc, m, previous, texel, n, out);
+  else env_span_channels<0>(op, cc, m, previous, texel, n, out);
+  return true;
 }
 
 Rgba color_sum(const Rgba& primary, const Rgba& secondary, const ColorFormat& fmt) {

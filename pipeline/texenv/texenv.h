@@ -71,6 +71,19 @@ TexEnvReads texenv_reads(const TexEnvState& env, BaseFormat base);
 Rgba texture_environment(const TexEnvState& env, const Rgba& previous, const Rgba& primary, const Texel& texel,
                          const ColorFormat& fmt);
 
+// Span fast path (fixed profiles, docs/performance.md): one unit's environment
+// over n fragments whose previous colours, primary colours and expanded texels
+// are codes, 4 per fragment, when the texel width equals the colour width. Every
+// operand is then k/m with one m, so the exact rational of texture_environment,
+// scaled, clamped and rounded half up once, is an integer formula:
+// a·b -> floor((2ab + m) / 2m), min(1, a + b) -> min(a + b, m), DOT3 ->
+// floor((2·Σ(2a − m)(2b − m) + m) / 2m) clamped, ... `out` may be `previous`.
+// Returns false and writes nothing when no such kernel applies (other widths):
+// the caller runs texture_environment.
+bool texture_environment_span_fixed(const TexEnvState& env, BaseFormat base, int texel_bits,
+                                    const std::uint16_t* previous, const std::uint16_t* primary,
+                                    const std::uint16_t* texel, int n, const ColorFormat& fmt, std::uint16_t* out);
+
 // Colour sum (GL 1.4 §3.9): R, G, B of primary + secondary clamped to 1; A of the
 // primary. Exact on codes of the same width.
 Rgba color_sum(const Rgba& primary, const Rgba& secondary, const ColorFormat& fmt);

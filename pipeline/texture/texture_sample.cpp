@@ -302,6 +302,183 @@ Texel sample_level(const TextureObject& tex, int level, int dims, GLenum filter,
   return expand_texel(im.base, level_values<double>(tex, im, dims, filter, s, t));
 }
 
+// ---- span fast path --------------------------------------------------------
+
+bool sample_span_supported(const TextureObject& tex, int dims, const SampleFormat& fmt) {
+  const TextureParams& p = tex.params;
+  if (!(fmt.arith == Arithmetic::Fixed && dims == 2 && p.min_filter == p.mag_filter &&
+        (p.mag_filter == gl::NEAREST || p.mag_filter == gl::LINEAR)))
+    return false;
+  // Power-of-two sides (every complete texture has them): REPEAT's mod is a mask.
+  const TextureImage& im = tex.levels[static_cast<std::size_t>(p.base_level)];
+  return is_pow2(level_width(im)) && is_pow2(level_height(im, dims));
+}
+
+namespace {
+
+// std::floor for binary32 without a library call, exact for every float: values
+// of magnitude >= 2^23 (and ±inf, NaN) are integral already; below, truncation
+// through int32 is exact, minus one for a negative non-integer; an integral x
+// (±0 included) is returned as is, keeping the sign of zero like floor.
+inline float floor_f(float x) {
+  if (!(std::fabs(x) < 8388608.0f)) return x;
+  const auto t = static_cast<float>(static_cast<std::int32_t>(x));
+  if (t == x) return x;
+  return t > x ? t - 1.0f : t;
+}
+
+// nearest_index<float> / linear_axis<float> for a power-of-two n with floor_f,
+// and i & (n − 1) for REPEAT's ((i % n) + n) % n (equal for a power of two n in
+// two's complement). The same operations otherwise, in the same order.
+inline int nearest_index_pow2(float s, int n, GLenum wrap) {
+  s = sanitize(s);
+  if (wrap == gl::REPEAT) {
+    const float u = (s - floor_f(s)) * static_cast<float>(n);
+    return static_cast<int>(floor_f(u)) & (n - 1);
+  }
+  if (wrap == gl::CLAMP_TO_EDGE) {
+    const float lo = 1.0f / static_cast<float>(2 * n);
+    s = std::clamp(s, lo, 1.0f - lo);
+  } else {
+    s = std::clamp(s, 0.0f, 1.0f);
+  }
+  const int i = static_cast<int>(floor_f(s * static_cast<float>(n)));
+  return std::min(i, n - 1);
+}
+
+inline LinearAxis<float> linear_axis_pow2(float s, int n, GLenum wrap) {
+  s = sanitize(s);
+  if (wrap == gl::REPEAT) {
+    s = s - floor_f(s);
+  } else if (wrap == gl::CLAMP_TO_EDGE) {
+    const float lo = 1.0f / static_cast<float>(2 * n);
+    s = std::clamp(s, lo, 1.0f - lo);
+  } else {
+    s = std::clamp(s, 0.0f, 1.0f);
+  }
+  const float x = s * static_cast<float>(n) - 0.5f;
+  const float fl = floor_f(x);
+  LinearAxis<float> a;
+  a.i0 = static_cast<int>(fl);
+  a.i1 = a.i0 + 1;
+  a.frac = x - fl;
+  if (wrap == gl::REPEAT) {
+    a.i0 &= n - 1;
+    a.i1 &= n - 1;
+  } else if (wrap == gl::CLAMP_TO_EDGE) {
+    a.i0 = std::clamp(a.i0, 0, n - 1);
+    a.i1 = std::clamp(a.i1, 0, n - 1);
+  }
+  return a;
+}
+
+// What sample_level computes per fragment, with everything that does not depend
+// on (s, t) computed once. kDirect: every index the filter produces lies inside
+// the image (NEAREST always; LINEAR unless a wrap is CLAMP), so fetch's
+// inside-or-border test is skipped.
+struct SpanLevel {
+  const TextureObject* tex;
+  const TextureImage* im;
+  int ws, hs, ncomp, B;
+  std::array<std::uint32_t, 4> border{};
+  std::array<int, 4> expand{};  // register component c = comps[expand[c]]; 4: 0, 5: one
+  std::uint32_t one_code;
+};
+
+// U: the accumulator of the weighted sum; std::uint32_t when it cannot overflow
+// (texel bits + 2B <= 31), else std::uint64_t as in level_codes. Same value.
+// NC: stored components per texel (0: L.ncomp at run time).
+template <bool kLinear, bool kDirect, class U, int NC>
+void span_level(const SpanLevel& L, const double* s, const double* t, int n, std::uint16_t* out) {
+  const TextureImage& im = *L.im;
+  const TextureParams& p = L.tex->params;
+  const int nc = NC ? NC : L.ncomp, b = im.border;
+  const std::uint16_t* codes = im.codes.data();
+  const std::size_t W = static_cast<std::size_t>(im.width);
+  auto at = [&](int i, int j) {  // kDirect: the texel's stored components in place
+    return codes + ((static_cast<std::size_t>(j + b) * W) + static_cast<std::size_t>(i + b)) * static_cast<std::size_t>(nc);
+  };
+  const U one = U{1} << L.B;
+  const int B2 = 2 * L.B;
+  const U half = U{1} << (B2 - 1);
+  const float two_b = std::ldexp(1.0f, L.B);
+  std::uint32_t k[4] = {0, 0, 0, 0};
+  // A row of a screen-aligned quad has one t: its axis is then computed once.
+  bool t_const = true;
+  for (int f = 1; f < n && t_const; ++f) t_const = t[f] == t[0];
+  LinearAxis<float> ay;
+  for (int f = 0; f < n; ++f) {
+    const auto sf = static_cast<float>(s[f]), tf = static_cast<float>(t[f]);  // as sample_level
+    if constexpr (!kLinear) {
+      const std::uint16_t* q = at(nearest_index_pow2(sf, L.ws, p.wrap_s), nearest_index_pow2(tf, L.hs, p.wrap_t));
+      for (int c = 0; c < nc; ++c) k[c] = q[c];
+    } else {
+      const LinearAxis<float> ax = linear_axis_pow2(sf, L.ws, p.wrap_s);
+      if (!t_const || f == 0) ay = linear_axis_pow2(tf, L.hs, p.wrap_t);
+      // floor(ldexp(α, B)): α·2^B is exact in binary32 (a power-of-two scale of
+      // α in [0, 1)), and truncation is floor for a non-negative value.
+      const auto a = static_cast<U>(ax.frac * two_b);
+      const auto bb = static_cast<U>(ay.frac * two_b);
+      const U w00 = (one - a) * (one - bb), w10 = a * (one - bb), w01 = (one - a) * bb, w11 = a * bb;
+      if constexpr (kDirect) {
+        const std::uint16_t *t00 = at(ax.i0, ay.i0), *t10 = at(ax.i1, ay.i0);
+        const std::uint16_t *t01 = at(ax.i0, ay.i1), *t11 = at(ax.i1, ay.i1);
+        for (int c = 0; c < nc; ++c) {
+          const U sum = U{t00[c]} * w00 + U{t10[c]} * w10 + U{t01[c]} * w01 + U{t11[c]} * w11;
+          k[c] = static_cast<std::uint32_t>((sum + half) >> B2);
+        }
+      } else {
+        const auto t00 = fetch(im, 2, ax.i0, ay.i0, L.border), t10 = fetch(im, 2, ax.i1, ay.i0, L.border);
+        const auto t01 = fetch(im, 2, ax.i0, ay.i1, L.border), t11 = fetch(im, 2, ax.i1, ay.i1, L.border);
+        for (int c = 0; c < nc; ++c) {
+          const U sum = t00[c] * w00 + t10[c] * w10 + t01[c] * w01 + t11[c] * w11;
+          k[c] = static_cast<std::uint32_t>((sum + half) >> B2);
+        }
+      }
+    }
+    std::uint16_t* o = out + 4 * static_cast<std::size_t>(f);
+    for (int c = 0; c < 4; ++c) {
+      const int e = L.expand[c];
+      o[c] = static_cast<std::uint16_t>(e < 4 ? k[e] : e == 5 ? L.one_code : 0u);
+    }
+  }
+}
+
+}  // namespace
+
+void sample_span_fixed(const TextureObject& tex, int dims, const double* s, const double* t, int n,
+                       const SampleFormat& fmt, std::uint16_t* out) {
+  SpanLevel L;
+  L.tex = &tex;
+  L.im = &tex.levels[static_cast<std::size_t>(tex.params.base_level)];
+  const TextureImage& im = *L.im;
+  L.ws = level_width(im);
+  L.hs = level_height(im, dims);
+  L.ncomp = component_count(im.base);
+  L.B = fmt.weight_bits;
+  const std::array<double, 4> bd = border_components(im.base, tex.params.border_color);
+  for (int c = 0; c < L.ncomp; ++c) L.border[c] = unorm_from_double(bd[c], im.bits);
+  L.one_code = unorm_max(im.bits);
+  // expand_texel's table as indices into the stored components.
+  switch (im.base) {
+    case BaseFormat::Alpha: L.expand = {4, 4, 4, 0}; break;
+    case BaseFormat::Luminance: L.expand = {0, 0, 0, 5}; break;
+    case BaseFormat::LuminanceAlpha: L.expand = {0, 0, 0, 1}; break;
+    case BaseFormat::Intensity: L.expand = {0, 0, 0, 0}; break;
+    case BaseFormat::RGB: L.expand = {0, 1, 2, 5}; break;
+    case BaseFormat::RGBA: L.expand = {0, 1, 2, 3}; break;
+  }
+  const bool linear = tex.params.mag_filter == gl::LINEAR;
+  const bool direct = !linear || (tex.params.wrap_s != gl::CLAMP && tex.params.wrap_t != gl::CLAMP);
+  const bool narrow = im.bits + 2 * L.B <= 31;
+  if (!linear) span_level<false, true, std::uint64_t, 0>(L, s, t, n, out);
+  else if (direct && narrow && L.ncomp == 4) span_level<true, true, std::uint32_t, 4>(L, s, t, n, out);
+  else if (direct && narrow && L.ncomp == 3) span_level<true, true, std::uint32_t, 3>(L, s, t, n, out);
+  else if (direct && narrow) span_level<true, true, std::uint32_t, 0>(L, s, t, n, out);
+  else if (direct) span_level<true, true, std::uint64_t, 0>(L, s, t, n, out);
+  else span_level<true, false, std::uint64_t, 0>(L, s, t, n, out);
+}
+
 Texel sample_texture(const TextureObject& tex, int dims, double s, double t, double lambda_in,
                      const SampleFormat& fmt) {
   const TextureParams& p = tex.params;

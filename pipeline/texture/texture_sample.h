@@ -77,6 +77,19 @@ std::string describe_footprint(const TextureObject& tex, int level, int dims, GL
 // λ is rounded to binary32 except in the ideal profile.
 Texel sample_texture(const TextureObject& tex, int dims, double s, double t, double lambda, const SampleFormat& fmt);
 
+// ---- span fast path (docs/performance.md) ---------------------------------
+// Whether sample_span_fixed applies: a fixed profile, a 2D texture whose
+// result cannot depend on λ (MIN_FILTER == MAG_FILTER, NEAREST or LINEAR), so
+// every fragment samples BASE_LEVEL with that filter.
+bool sample_span_supported(const TextureObject& tex, int dims, const SampleFormat& fmt);
+// For every i < n: the register-layout codes of
+// sample_texture(tex, dims, s[i], t[i], λ, fmt) (any λ), 4 per fragment, at the
+// base level's bits, into out[4i..4i+3]. Same operations, in the same order, as
+// sample_level (binary32 coordinates, the same weights and rounding); only the
+// per-fragment work that does not depend on the coordinates is hoisted.
+void sample_span_fixed(const TextureObject& tex, int dims, const double* s, const double* t, int n,
+                       const SampleFormat& fmt, std::uint16_t* out);
+
 // The base-format expansion above applied to stored components (`comps` in the
 // storage order of texture_object.h): exposed for tests and for the combiners.
 Texel expand_texel(BaseFormat base, int bits, const std::array<std::uint32_t, 4>& comps);

@@ -1,0 +1,275 @@
+#include "pipeline/combiners/combiner_span.h"
+
+#include <algorithm>
+#include <cstring>
+#include <type_traits>
+
+#include "pipeline/combiners/final_combiner.h"
+#include "pipeline/combiners/register_combiners.h"
+#include "pipeline/number/snorm.h"
+#include "pipeline/number/unorm.h"
+
+namespace ffsim::combiners {
+
+namespace {
+
+constexpr int kChunk = 64;  // fragments per pass
+
+// kM: the register maximum M when fixed at compile time (0: plan.M at run time).
+// P: the integer type of mapped products and stage sums (see the header).
+template <std::int32_t kM, class Acc>
+struct Kernel {
+  using P = std::conditional_t<kM != 0 && kM <= 2047, std::int32_t, std::int64_t>;
+  // Registers are left uninitialised here: run() zeroes the first n entries of
+  // each chunk (short runs of small triangles must not pay for 12 KB of zeroes).
+  Kernel(const CombinerPlan& p, std::int32_t m) : plan(p), M_rt(m) {}
+  const CombinerPlan& plan;
+  const std::int32_t M_rt;
+  std::int32_t M() const { return kM ? kM : M_rt; }
+
+  alignas(64) std::int32_t reg[kRegisterCount][4][kChunk];
+
+  // div_round_half_away (snorm.h) in P.
+  static P round_away(P num, P den) {
+    const P q = (2 * (num < 0 ? -num : num) + den) / (2 * den);
+    return num < 0 ? -q : q;
+  }
+
+  // Input entry (register_combiners.cpp's Entry): identity when the grids agree.
+  void load(const std::uint16_t* src, int bits, int comps, int reg_index, int n, std::size_t first) {
+    const bool identity = static_cast<std::uint32_t>(M()) == unorm_max(bits);
+    for (int c = 0; c < comps; ++c) {
+      std::int32_t* d = reg[reg_index][c];
+      const std::uint16_t* s = src + 4 * first + static_cast<std::size_t>(c);
+      if (identity)
+        for (int i = 0; i < n; ++i) d[i] = s[4 * i];
+      else
+        for (int i = 0; i < n; ++i) d[i] = snorm_from_unorm(s[4 * i], bits, plan.config.combiner_bits);
+    }
+  }
+
+  void set_constants(const std::array<std::array<std::int32_t, 4>, 2>& k, int n) {
+    for (int c = 0; c < 4; ++c) {
+      std::fill_n(reg[kConstantColor0][c], n, k[0][static_cast<std::size_t>(c)]);
+      std::fill_n(reg[kConstantColor1][c], n, k[1][static_cast<std::size_t>(c)]);
+    }
+  }
+
+  // portion_fixed<L> over the chunk: outputs o (AB, CD, SUM/MUX) into out[o][l].
+  template <int L>
+  void portion(const PlannedPortion& p, bool per_product, int n, std::int32_t (&out)[3][3][kChunk]) {
+    const P M = this->M(), four_m = 4 * M, eight_m = 8 * M, two_m2 = 2 * M * M;
+    P mv[4][3][kChunk];
+    for (int v = 0; v < 4; ++v) {
+      if (v < 2 ? !p.need_ab : !p.need_cd) continue;
+      const PlannedVar& var = p.var[static_cast<std::size_t>(v)];
+      const MappingCoeffs k = var.k;
+      for (int l = 0; l < L; ++l) {
+        const std::int32_t* src = reg[var.reg][var.comp[static_cast<std::size_t>(l)]];
+        for (int i = 0; i < n; ++i) mv[v][l][i] = static_cast<P>(k.mul * std::clamp(src[i], k.lo, k.hi) + k.add);
+      }
+    }
+    P ab[3][kChunk], cd[3][kChunk];
+    auto products = [&](int a, int b, bool dot, P(&r)[3][kChunk]) {
+      if (per_product)  // every product first rounded to the register grid
+        for (int l = 0; l < L; ++l)
+          for (int i = 0; i < n; ++i) r[l][i] = four_m * round_away(mv[a][l][i] * mv[b][l][i], four_m);
+      else
+        for (int l = 0; l < L; ++l)
+          for (int i = 0; i < n; ++i) r[l][i] = mv[a][l][i] * mv[b][l][i];
+      if (L == 3 && dot)  // the sum of the three lane products, broadcast
+        for (int i = 0; i < n; ++i) r[0][i] = r[1][i] = r[2][i] = r[0][i] + r[1][i] + r[2][i];
+    };
+    if (p.need_ab) products(0, 1, p.ab_dot, ab);
+    if (p.need_cd) products(2, 3, p.cd_dot, cd);
+    const std::int32_t* spare0_a = reg[kSpare0][3];
+    const P scale2 = p.scale2, bias = p.bias ? two_m2 : 0;
+    // output_code: round((x + bias)·2·scale / 8M) half away, clamp to [−M, M].
+    auto code = [&](P x) { return static_cast<std::int32_t>(std::clamp(round_away((x - bias) * scale2, eight_m), -M, M)); };
+    for (int o = 0; o < 3; ++o) {
+      if (p.dest[static_cast<std::size_t>(o)] < 0) continue;
+      for (int l = 0; l < L; ++l) {
+        std::int32_t* d = out[o][l];
+        const P* x_ab = ab[l];
+        const P* x_cd = cd[l];
+        if (o == 0)
+          for (int i = 0; i < n; ++i) d[i] = code(x_ab[i]);
+        else if (o == 1)
+          for (int i = 0; i < n; ++i) d[i] = code(x_cd[i]);
+        else if (p.mux)  // MUX: spare0.a >= 1/2 (exact: 2·spare0.a >= M) selects CD
+          for (int i = 0; i < n; ++i) d[i] = code(2 * P{spare0_a[i]} >= M ? x_cd[i] : x_ab[i]);
+        else
+          for (int i = 0; i < n; ++i) d[i] = code(x_ab[i] + x_cd[i]);
+      }
+    }
+  }
+
+  void stage(const PlannedStage& st, bool per_product, int n) {
+    std::int32_t rgb[3][3][kChunk], alpha[3][3][kChunk];
+    if (st.rgb.run) portion<3>(st.rgb, per_product, n, rgb);
+    if (st.alpha.run) portion<1>(st.alpha, per_product, n, alpha);
+    // write_outputs: RGB outputs to R, G, B, then alpha outputs to A.
+    if (st.rgb.run)
+      for (int o = 0; o < 3; ++o)
+        if (const int d = st.rgb.dest[static_cast<std::size_t>(o)]; d >= 0)
+          for (int c = 0; c < 3; ++c) std::copy_n(rgb[o][c], n, reg[d][c]);
+    if (st.alpha.run)
+      for (int o = 0; o < 3; ++o)
+        if (const int d = st.alpha.dest[static_cast<std::size_t>(o)]; d >= 0) std::copy_n(alpha[o][0], n, reg[d][3]);
+  }
+
+  // final_combiner_fixed<Acc> over the chunk, variable by variable.
+  void final(int n, std::uint16_t* out) const {
+    const PlannedFinal& f = plan.final;
+    const std::int32_t Mi = M();
+    const std::int64_t m = Mi, m2 = m * m;
+    const int color_bits = plan.config.color_bits;
+    const Acc nmax = (Acc{1} << color_bits) - 1;
+    const Acc m4 = Acc{m2} * m2;
+    // final_reg: UNSIGNED_INVERT 1 − clamp01, UNSIGNED_IDENTITY max(0, ·), in units of 1/M.
+    auto final_reg = [&](const PlannedVar& v, int lane, std::int64_t* r) {
+      const std::int32_t* c = reg[v.reg][v.comp[static_cast<std::size_t>(lane)]];
+      if (v.mapping == Mapping::UnsignedInvert)
+        for (int i = 0; i < n; ++i) r[i] = Mi - std::clamp(c[i], 0, Mi);
+      else
+        for (int i = 0; i < n; ++i) r[i] = std::max(c[i], 0);
+    };
+    std::int64_t ef[3][kChunk], sps[3][kChunk], e[kChunk], fv[kChunk];
+    if (f.need_ef)
+      for (int l = 0; l < 3; ++l) {
+        final_reg(f.var[4], l, e);
+        final_reg(f.var[5], l, fv);
+        for (int i = 0; i < n; ++i) ef[l][i] = e[i] * fv[i];
+      }
+    if (f.need_spare0_plus_secondary)
+      for (int l = 0; l < 3; ++l)
+        for (int i = 0; i < n; ++i) {
+          const std::int64_t s = std::int64_t{std::max(reg[kSpare0][l][i], 0)} + std::max(reg[kSecondaryColor][l][i], 0);
+          sps[l][i] = f.color_sum_clamp ? std::min(s, m) : s;
+        }
+    auto wide = [&](const PlannedVar& v, int l, std::int64_t* w) {  // units of 1/M^2
+      const bool inv = v.mapping == Mapping::UnsignedInvert;
+      if (v.reg == kETimesF) {
+        for (int i = 0; i < n; ++i)
+          w[i] = inv ? m2 - std::clamp(ef[l][i], std::int64_t{0}, m2) : std::max(ef[l][i], std::int64_t{0});
+      } else if (v.reg == kSpare0PlusSecondary) {
+        for (int i = 0; i < n; ++i) w[i] = inv ? m2 - std::min(sps[l][i] * m, m2) : sps[l][i] * m;
+      } else {
+        final_reg(v, l, w);
+        for (int i = 0; i < n; ++i) w[i] *= m;
+      }
+    };
+    std::int64_t a[kChunk], b[kChunk], c[kChunk], d[kChunk];
+    // A, B, C, D all ZERO (a pass that computes only alpha): RGB is a constant.
+    bool rgb_const = true;
+    for (std::size_t v = 0; v < 4; ++v) rgb_const &= f.var[v].reg == kZero;
+    for (int l = 0; l < 3 && rgb_const; ++l) {
+      wide(f.var[0], l, a);
+      wide(f.var[1], l, b);
+      wide(f.var[2], l, c);
+      wide(f.var[3], l, d);
+      Acc x = Acc{a[0]} * b[0] + (Acc{m2} - a[0]) * c[0] + Acc{d[0]} * Acc{m2};
+      if (x > m4) x = m4;
+      const auto k = static_cast<std::uint16_t>((2 * x * nmax + m4) / (2 * m4));
+      for (int i = 0; i < n; ++i) out[4 * i + l] = k;
+    }
+    for (int l = 0; l < 3 && !rgb_const; ++l) {
+      wide(f.var[0], l, a);
+      wide(f.var[1], l, b);
+      wide(f.var[2], l, c);
+      wide(f.var[3], l, d);
+      for (int i = 0; i < n; ++i) {
+        Acc x = Acc{a[i]} * b[i] + (Acc{m2} - a[i]) * c[i] + Acc{d[i]} * Acc{m2};
+        if (x > m4) x = m4;
+        out[4 * i + l] = static_cast<std::uint16_t>((2 * x * nmax + m4) / (2 * m4));
+      }
+    }
+    final_reg(f.var[6], 0, e);
+    for (int i = 0; i < n; ++i) out[4 * i + 3] = static_cast<std::uint16_t>((2 * Acc{e[i]} * nmax + m) / (2 * m));
+  }
+
+  void run(const CombinerInputsFixed& in, const std::array<double, 4>& fog_color, std::uint16_t* out) {
+    const CombinerConfig& cfg = plan.config;
+    const bool per_product = cfg.rounding == CombinerRounding::PerProduct;
+    bool own_constants = false;
+    for (const PlannedStage& st : plan.stages) own_constants |= st.own_constants;
+    std::int32_t fog[3];
+    for (int c = 0; c < 3; ++c) {
+      const std::uint32_t k = unorm_from_double(fog_color[static_cast<std::size_t>(c)], cfg.color_bits);
+      fog[c] = static_cast<std::uint32_t>(M()) == unorm_max(cfg.color_bits)
+                   ? static_cast<std::int32_t>(k)
+                   : snorm_from_unorm(k, cfg.color_bits, cfg.combiner_bits);
+    }
+    for (int first = 0; first < in.count; first += kChunk) {
+      const int n = std::min(kChunk, in.count - first);
+      const auto f0 = static_cast<std::size_t>(first);
+      for (auto& r : reg)  // the reference starts every fragment from zeroed registers
+        for (auto& comp : r) std::fill_n(comp, n, 0);
+      set_constants(plan.constant_codes, n);
+      for (int c = 0; c < 3; ++c) std::fill_n(reg[kFog][c], n, fog[c]);
+      if (in.fog_factor) {
+        const bool identity = static_cast<std::uint32_t>(M()) == unorm_max(cfg.color_bits);
+        for (int i = 0; i < n; ++i) {
+          const std::uint16_t k = in.fog_factor[f0 + static_cast<std::size_t>(i)];
+          reg[kFog][3][i] = identity ? std::int32_t{k} : snorm_from_unorm(k, cfg.color_bits, cfg.combiner_bits);
+        }
+      } else {
+        std::fill_n(reg[kFog][3], n, M());
+      }
+      if (plan.primary_needed) load(in.primary, cfg.color_bits, 4, kPrimaryColor, n, f0);
+      if (plan.secondary_needed && in.secondary)
+        load(in.secondary, cfg.color_bits, cfg.rc2_secondary_alpha ? 4 : 3, kSecondaryColor, n, f0);
+      for (int u = 0; u < kMaxRegisterTextures; ++u) {
+        const std::uint16_t* t = in.texture[static_cast<std::size_t>(u)];
+        if (plan.texture_needed[static_cast<std::size_t>(u)] && t) load(t, cfg.texture_bits, 4, kTexture0 + u, n, f0);
+      }
+      std::copy_n(reg[kTexture0][3], n, reg[kSpare0][3]);
+      for (const PlannedStage& st : plan.stages) {
+        if (st.own_constants) set_constants(st.constant_codes, n);
+        stage(st, per_product, n);
+      }
+      if (own_constants) set_constants(plan.constant_codes, n);  // RC2: the final combiner reads the global ones
+      final(n, out + 4 * f0);
+    }
+  }
+};
+
+template <std::int32_t kM, class Acc>
+void run_kernel(const CombinerPlan& plan, const CombinerInputsFixed& in, const std::array<double, 4>& fog,
+                std::uint16_t* out) {
+  Kernel<kM, Acc> k(plan, plan.M);  // ~30 KB of stack
+  k.run(in, fog, out);
+}
+
+// Registers a general stage or the final combiner may read: the plan only holds
+// ordinary registers there (pseudo-registers only in final A..D).
+bool plan_supported(const CombinerPlan& plan) {
+  for (const PlannedStage& st : plan.stages)
+    for (const PlannedPortion* p : {&st.rgb, &st.alpha})
+      for (const PlannedVar& v : p->var)
+        if (v.reg >= kRegisterCount) return false;
+  for (std::size_t v = 4; v < 7; ++v)
+    if (plan.final.var[v].reg >= kRegisterCount) return false;
+  return true;
+}
+
+}  // namespace
+
+bool shade_span_fast(const CombinerPlan& plan, const CombinerInputsFixed& in, const std::array<double, 4>& fog_color,
+                     std::uint16_t* out) {
+  if (plan.config.arithmetic != Arithmetic::Fixed || !plan_supported(plan)) return false;
+  if (in.count <= 0) return true;
+  const bool wide = final_needs_int128(plan.M, plan.config.color_bits);
+  if (wide) {
+    run_kernel<0, Int128>(plan, in, fog_color, out);
+    return true;
+  }
+  switch (plan.M) {
+    case 255: run_kernel<255, std::int64_t>(plan, in, fog_color, out); break;
+    case 1023: run_kernel<1023, std::int64_t>(plan, in, fog_color, out); break;
+    default: run_kernel<0, std::int64_t>(plan, in, fog_color, out); break;
+  }
+  return true;
+}
+
+}  // namespace ffsim::combiners

@@ -1,0 +1,165 @@
+// The span path of the draw (docs/performance.md): one CoverageRun shaded at
+// once, in fixed profiles, with the same numbers as the per-fragment path of
+// sim/draw.cpp (which stays the reference and serves --probe):
+//   - colour and depth codes by interpolate_code_run, the exact DDA form of
+//     interpolate_code (numerics §8.2);
+//   - texture coordinates by the very same binary64 operations, in the same
+//     order, per fragment;
+//   - texels by sample_span_fixed (textures whose result cannot depend on λ);
+//   - texture environments by texture_environment_span_fixed where an integer
+//     kernel exists, else texture_environment per fragment; the colour sum on
+//     codes; or the register combiners' shade_span over the whole run.
+#include <algorithm>
+
+#include "pipeline/combiners/combiner_span.h"
+#include "pipeline/combiners/register_combiners.h"
+#include "pipeline/number/unorm.h"
+#include "sim/draw_span.h"
+
+namespace ffsim {
+
+namespace {
+
+// Interpolated colour codes of the run, 4 per fragment (flat: the provoking
+// vertex's, which draw_polygon copied to every vertex).
+void interpolate_colors(const std::array<const WindowVertex*, 3>& tv, bool secondary, const TriangleCoverage& cov,
+                        const CoverageRun& run, bool flat, int n, std::vector<std::uint32_t>& lane,
+                        std::uint16_t* out) {
+  auto code = [&](const WindowVertex* v, int c) { return secondary ? v->secondary_code[c] : v->color_code[c]; };
+  for (int c = 0; c < 4; ++c) {
+    if (flat) {
+      const auto k = static_cast<std::uint16_t>(code(tv[0], c));
+      for (int f = 0; f < n; ++f) out[4 * f + c] = k;
+      continue;
+    }
+    interpolate_code_run(run.weight[0], cov.dwdx, cov.area, code(tv[0], c), code(tv[1], c), code(tv[2], c), n,
+                         lane.data());
+    for (int f = 0; f < n; ++f) out[4 * f + c] = static_cast<std::uint16_t>(lane[static_cast<std::size_t>(f)]);
+  }
+}
+
+}  // namespace
+
+bool Context::shade_run_fast(const ShadingState& st, const ShadingPlan& plan,
+                             const std::array<const WindowVertex*, 3>& tv, const TriangleCoverage& cov,
+                             const CoverageRun& run, bool flat, bool shade, FragmentSpan& span, SpanScratch& sc) {
+  if (profile_.arithmetic != Arithmetic::Fixed) return false;
+  const int n = span.count;
+  if (probe_.enabled() && probe_.y() == span.y && probe_.x() >= span.x0 && probe_.x() < span.x0 + n) return false;
+  if (shade)
+    for (int u = 0; u < kShadeUnits; ++u)
+      if (plan.sample[u] && !sample_span_supported(*st.units[u].texture, st.units[u].dims, st.sample)) return false;
+
+  const auto N = static_cast<std::size_t>(n);
+  sc.lane.resize(N);
+  if (fb_.has_depth())
+    interpolate_code_run(run.weight[0], cov.dwdx, cov.area, tv[0]->depth, tv[1]->depth, tv[2]->depth, n,
+                         span.depth.data());
+  std::uint16_t* out = span.codes.data();
+  interpolate_colors(tv, false, cov, run, flat, n, sc.lane, out);  // the primary colour, shaded in place
+  if (!shade) return true;
+
+  const bool combine = combiners_.enabled;
+  const combiners::CombinerPlan* cp = combine ? &combiner_plan() : nullptr;
+  const bool need_secondary = combine ? cp->secondary_needed : plan.color_sum;
+  if (need_secondary) {
+    sc.secondary.resize(4 * N);
+    interpolate_colors(tv, true, cov, run, flat, n, sc.lane, sc.secondary.data());
+  }
+  // Texture coordinates (the per-fragment path's operations exactly: Σ in k
+  // order from 0, divided by A, then s/q and t/q) and the span's texels.
+  const double a = static_cast<double>(cov.area);
+  sc.s.resize(N);
+  sc.t.resize(N);
+  for (int u = 0; u < kShadeUnits; ++u) {
+    if (!plan.sample[u]) continue;
+    for (int f = 0; f < n; ++f) {
+      const auto& w = run.weight[static_cast<std::size_t>(f)];
+      std::array<double, 3> v{};
+      for (int j = 0; j < 3; ++j) {
+        for (int k = 0; k < 3; ++k) v[j] += static_cast<double>(w[k]) * tv[k]->tcw[u][j];
+        v[j] /= a;
+      }
+      const double q = v[2];
+      sc.s[static_cast<std::size_t>(f)] = v[0] / q;
+      sc.t[static_cast<std::size_t>(f)] = v[1] / q;
+    }
+    sc.texels[u].resize(4 * N);
+    sample_span_fixed(*st.units[u].texture, st.units[u].dims, sc.s.data(), sc.t.data(), n, st.sample,
+                      sc.texels[u].data());
+  }
+  auto texel_bits = [&](int u) {
+    const TextureObject& tex = *st.units[u].texture;
+    return tex.levels[static_cast<std::size_t>(tex.params.base_level)].bits;
+  };
+
+  if (combine) {
+    // combine_fragment for the whole run: texels at the profile's texture width.
+    if (cp->primary_needed) {
+      sc.primary.assign(out, out + 4 * N);
+    }
+    combiners::CombinerInputsFixed in;
+    in.count = n;
+    in.primary = cp->primary_needed ? sc.primary.data() : nullptr;
+    in.secondary = need_secondary ? sc.secondary.data() : nullptr;
+    for (int u = 0; u < kShadeUnits; ++u) {
+      if (!plan.sample[u]) continue;
+      const int bits = texel_bits(u);
+      if (bits != profile_.texture_bits)
+        for (std::uint16_t& k : sc.texels[u]) k = static_cast<std::uint16_t>(unorm_convert(k, bits, profile_.texture_bits));
+      in.texture[u] = sc.texels[u].data();
+    }
+    const std::array<double, 4> fog{0, 0, 0, 0};  // fog not modelled (combine_fragment)
+    if (!combiners::shade_span_fast(*cp, in, fog, out)) combiners::shade_span(*cp, in, fog, out);
+    return true;
+  }
+
+  // Texture environments (texture_environments), unit by unit, in place on `out`;
+  // COMBINE may read the primary colour, kept aside first.
+  const int bits = st.color.bits;
+  bool primary_kept = false;
+  for (int u = 0; u < kShadeUnits && !primary_kept; ++u)
+    if (plan.env[u] && st.units[u].env.mode == gl::COMBINE) {
+      sc.primary.assign(out, out + 4 * N);
+      primary_kept = true;
+    }
+  for (int u = 0; u < kShadeUnits; ++u) {
+    if (!plan.env[u]) continue;
+    const TextureObject& tex = *st.units[u].texture;
+    const BaseFormat base = tex.levels[static_cast<std::size_t>(tex.params.base_level)].base;
+    const TexEnvState& env = st.units[u].env;
+    if (plan.sample[u] && texture_environment_span_fixed(env, base, texel_bits(u), out, sc.primary.data(),
+                                                         sc.texels[u].data(), n, st.color, out))
+      continue;
+    // No integer kernel: texture_environment per fragment (COMBINE reads the
+    // primary colour, kept aside before the first unit changes `out`).
+    if (!primary_kept) {  // (units before this one may have changed `out`)
+      sc.primary.resize(4 * N);
+      interpolate_colors(tv, false, cov, run, flat, n, sc.lane, sc.primary.data());
+      primary_kept = true;
+    }
+    Texel t{};
+    t.base = base;
+    if (plan.sample[u]) t.bits = texel_bits(u);
+    for (int f = 0; f < n; ++f) {
+      const std::size_t o = 4 * static_cast<std::size_t>(f);
+      Rgba prev, prim;
+      for (int c = 0; c < 4; ++c) {
+        prev.code[c] = out[o + c];
+        prim.code[c] = sc.primary[o + c];
+        if (plan.sample[u]) t.code[c] = sc.texels[u][o + c];
+      }
+      const Rgba r = texture_environment(env, prev, prim, t, st.color);
+      for (int c = 0; c < 4; ++c) out[o + c] = static_cast<std::uint16_t>(r.code[c]);
+    }
+  }
+  if (plan.color_sum) {  // color_sum on codes of one width: min(p + s, 2^m − 1)
+    const std::uint32_t m = unorm_max(bits);
+    for (std::size_t i = 0; i < 4 * N; i += 4)
+      for (std::size_t c = 0; c < 3; ++c)
+        out[i + c] = static_cast<std::uint16_t>(std::min<std::uint32_t>(std::uint32_t{out[i + c]} + sc.secondary[i + c], m));
+  }
+  return true;
+}
+
+}  // namespace ffsim

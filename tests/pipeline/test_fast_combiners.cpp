@@ -1,0 +1,182 @@
+// The register combiners' span kernel (pipeline/combiners/combiner_span.cpp)
+// against the generic shade_span: random combiner states (every stage count,
+// mapping, output, scale, bias, dot, mux, per-stage constants, both rounding
+// modes, RC2 secondary alpha) and random inputs (spans of 1..200 fragments, so
+// chunk boundaries are crossed), in every fixed profile and at widths off the
+// register grid. Outputs must be identical.
+#include <doctest/doctest.h>
+
+#include <random>
+#include <vector>
+
+#include "combiner_test_support.h"
+#include "pipeline/combiners/combiner_span.h"
+#include "pipeline/combiners/describe.h"
+
+using namespace ffsim;
+using namespace ffsim::combiners;
+
+namespace {
+
+const GLenum kRegs[] = {gl::ZERO,        gl::CONSTANT_COLOR0_NV, gl::CONSTANT_COLOR1_NV, gl::FOG,
+                        gl::PRIMARY_COLOR_NV, gl::SECONDARY_COLOR_NV, gl::SPARE0_NV, gl::SPARE1_NV,
+                        gl::TEXTURE0,    gl::TEXTURE1,           gl::TEXTURE2,           gl::TEXTURE3};
+const GLenum kOuts[] = {gl::DISCARD_NV, gl::DISCARD_NV, gl::DISCARD_NV, gl::PRIMARY_COLOR_NV, gl::SECONDARY_COLOR_NV,
+                        gl::SPARE0_NV,  gl::SPARE1_NV,  gl::TEXTURE0,   gl::TEXTURE1,         gl::TEXTURE2,
+                        gl::TEXTURE3};
+const GLenum kScales[] = {gl::NONE, gl::SCALE_BY_TWO_NV, gl::SCALE_BY_FOUR_NV, gl::SCALE_BY_ONE_HALF_NV};
+
+template <class T, std::size_t N>
+T pick(std::mt19937& rng, const T (&a)[N], std::size_t n = N) {
+  return a[rng() % n];
+}
+
+CombinerState random_state(std::mt19937& rng, const CombinerConfig& cfg) {
+  const std::size_t nregs = 8 + static_cast<std::size_t>(cfg.texture_units);
+  const std::size_t nouts = 7 + static_cast<std::size_t>(cfg.texture_units);
+  std::uniform_real_distribution<double> u(0, 1);
+  CombinerState s;
+  s.num_general_combiners = 1 + static_cast<int>(rng() % static_cast<unsigned>(cfg.general_combiners));
+  s.color_sum_clamp = rng() % 2;
+  s.per_stage_constants = rng() % 3 == 0;
+  for (auto* c : {&s.constant_color0, &s.constant_color1})
+    for (double& x : *c) x = u(rng);
+  for (int i = 0; i < cfg.general_combiners; ++i) {
+    GeneralStageState& st = s.stages[static_cast<std::size_t>(i)];
+    for (auto* c : {&st.constant_color0, &st.constant_color1})
+      for (double& x : *c) x = u(rng);
+    for (int portion = 0; portion < 2; ++portion) {
+      PortionState& p = portion == 0 ? st.rgb : st.alpha;
+      const GLenum pe = portion == 0 ? gl::RGB : gl::ALPHA;
+      for (auto& v : p.var) {
+        do {
+          const GLenum usages_rgb[] = {gl::RGB, gl::RGB, gl::ALPHA}, usages_a[] = {gl::ALPHA, gl::BLUE};
+          v = VariableState{pick(rng, kRegs, nregs), pick(rng, test::kMappings),
+                            portion == 0 ? pick(rng, usages_rgb) : pick(rng, usages_a)};
+        } while (!check_combiner_input(pe, gl::VARIABLE_A_NV, v.input, v.mapping, v.component_usage, cfg.texture_units));
+      }
+      do {
+        p.ab_output = pick(rng, kOuts, nouts);
+        p.cd_output = pick(rng, kOuts, nouts);
+        p.sum_output = pick(rng, kOuts, nouts);
+        p.scale = pick(rng, kScales);
+        p.bias = rng() % 3 == 0 ? gl::BIAS_BY_NEGATIVE_ONE_HALF_NV : gl::NONE;
+        p.ab_dot_product = portion == 0 && rng() % 3 == 0;
+        p.cd_dot_product = portion == 0 && rng() % 3 == 0;
+        p.mux_sum = rng() % 3 == 0;
+      } while (!check_combiner_output(pe, p.ab_output, p.cd_output, p.sum_output, p.scale, p.bias, p.ab_dot_product,
+                                      p.cd_dot_product, cfg.texture_units));
+    }
+  }
+  const GLenum final_inputs[] = {gl::ZERO,          gl::CONSTANT_COLOR0_NV, gl::CONSTANT_COLOR1_NV, gl::FOG,
+                                 gl::PRIMARY_COLOR_NV, gl::SECONDARY_COLOR_NV, gl::SPARE0_NV,     gl::SPARE1_NV,
+                                 gl::TEXTURE0,      gl::TEXTURE1,           gl::E_TIMES_F_NV,       gl::SPARE0_PLUS_SECONDARY_COLOR_NV,
+                                 gl::SPARE0_NV,     gl::SPARE1_NV};
+  const GLenum usages[] = {gl::RGB, gl::ALPHA, gl::BLUE};
+  for (std::size_t v = 0; v < 7; ++v) {
+    VariableState& f = s.final_var[v];
+    do {
+      f = VariableState{pick(rng, final_inputs), rng() % 2 ? gl::UNSIGNED_IDENTITY_NV : gl::UNSIGNED_INVERT_NV,
+                        pick(rng, usages)};
+    } while (!check_final_combiner_input(gl::VARIABLE_A_NV + static_cast<GLenum>(v), f.input, f.mapping,
+                                         f.component_usage, cfg.texture_units));
+  }
+  return s;
+}
+
+struct Case {
+  CombinerPlan plan;
+  std::vector<std::uint16_t> primary, secondary, fog, tex[4];
+  CombinerInputsFixed in;
+};
+
+Case random_case(std::mt19937& rng, CombinerConfig cfg, bool skip_dead) {
+  Case c;
+  cfg.rounding = rng() % 2 ? CombinerRounding::PerProduct : CombinerRounding::PerStage;
+  cfg.rc2_secondary_alpha = rng() % 2;
+  c.plan = plan_combiners(random_state(rng, cfg), cfg, skip_dead);
+  const int count = 1 + static_cast<int>(rng() % 200);
+  const std::uint32_t cmax = (1u << cfg.color_bits) - 1, tmax = (1u << cfg.texture_bits) - 1;
+  auto fill = [&](std::vector<std::uint16_t>& v, std::size_t n, std::uint32_t max) {
+    v.resize(n);
+    for (auto& x : v) x = static_cast<std::uint16_t>(rng() % 4 == 0 ? (rng() % 2) * max : rng() % (max + 1));
+  };
+  fill(c.primary, 4 * static_cast<std::size_t>(count), cmax);
+  fill(c.secondary, 4 * static_cast<std::size_t>(count), cmax);
+  fill(c.fog, static_cast<std::size_t>(count), cmax);
+  for (auto& t : c.tex) fill(t, 4 * static_cast<std::size_t>(count), tmax);
+  c.in.count = count;
+  c.in.primary = c.primary.data();
+  c.in.secondary = rng() % 4 ? c.secondary.data() : nullptr;
+  c.in.fog_factor = rng() % 2 ? c.fog.data() : nullptr;
+  for (std::size_t u = 0; u < 4; ++u)
+    c.in.texture[u] = static_cast<int>(u) < cfg.texture_units && rng() % 4 ? c.tex[u].data() : nullptr;
+  return c;
+}
+
+void compare(const Profile& profile, int iterations, unsigned seed) {
+  std::mt19937 rng(seed);
+  const CombinerConfig cfg = CombinerConfig::from_profile(profile);
+  for (int it = 0; it < iterations; ++it) {
+    const Case c = random_case(rng, cfg, it % 4 != 0);
+    const std::array<double, 4> fog_color{0.25, 0.5, 0.75, 1.0};
+    std::vector<std::uint16_t> generic(4 * static_cast<std::size_t>(c.in.count)), fast(generic.size(), 7);
+    shade_span(c.plan, c.in, fog_color, generic.data());
+    REQUIRE(shade_span_fast(c.plan, c.in, fog_color, fast.data()));
+    if (generic != fast) {
+      FAIL_CHECK("fast != generic, iteration " << it << ", profile " << profile.name << ", bits " << cfg.combiner_bits
+                                              << "\n" << describe(c.plan));
+      return;
+    }
+  }
+}
+
+}  // namespace
+
+TEST_CASE("fast combiners: span kernel == shade_span, geforce256") {
+  compare(*find_builtin_profile("geforce256"), 1500, 11);
+}
+
+TEST_CASE("fast combiners: span kernel == shade_span, rgba10 and rgba12 (8 stages, 4 units, 128-bit final)") {
+  compare(*find_builtin_profile("rgba10"), 500, 12);
+  compare(*find_builtin_profile("rgba12"), 500, 13);
+}
+
+TEST_CASE("fast combiners: span kernel == shade_span at widths off the register grid and a run-time M") {
+  Profile p = *find_builtin_profile("geforce256");
+  p.color_bits = 6;
+  p.texture_bits = 5;
+  p.combiner_bits = 10;  // M = 511: not a compiled-in constant
+  compare(p, 500, 14);
+  p.color_bits = 10;
+  p.texture_bits = 8;
+  p.combiner_bits = 12;  // M = 2047: entry conversion widens colours, narrows nothing
+  compare(p, 300, 15);
+}
+
+TEST_CASE("fast combiners: float profiles are left to shade_span") {
+  std::mt19937 rng(16);
+  const CombinerConfig cfg = CombinerConfig::from_profile(*find_builtin_profile("float32"));
+  const CombinerPlan plan = plan_combiners(random_state(rng, cfg), cfg);
+  CombinerInputsFixed in;
+  in.count = 1;
+  std::uint16_t out[4] = {1, 2, 3, 4};
+  CHECK_FALSE(shade_span_fast(plan, in, {0, 0, 0, 0}, out));
+  CHECK(out[0] == 1);
+}
+
+TEST_CASE("fast combiners: a planted difference is detected") {
+  // The comparison sees a change of one planned scale in the kernel's plan.
+  std::mt19937 rng(17);
+  const CombinerConfig cfg = CombinerConfig::from_profile(*find_builtin_profile("geforce256"));
+  int differing = 0;
+  for (int it = 0; it < 200; ++it) {
+    Case c = random_case(rng, cfg, true);
+    std::vector<std::uint16_t> generic(4 * static_cast<std::size_t>(c.in.count)), fast(generic.size());
+    shade_span(c.plan, c.in, {0, 0, 0, 0}, generic.data());
+    for (PlannedStage& st : c.plan.stages) st.rgb.scale2 = st.rgb.scale2 == 2 ? 4 : 2;
+    shade_span_fast(c.plan, c.in, {0, 0, 0, 0}, fast.data());
+    differing += generic != fast;
+  }
+  CHECK(differing > 20);
+}

@@ -1,0 +1,104 @@
+// The span path of the draw (sim/draw_span.cpp) against the per-fragment path:
+// random scenes (seeded) drawn with set_fast_paths(true) and (false) must leave
+// identical colour, stencil and depth buffers, in every built-in profile.
+#include <doctest/doctest.h>
+
+#include "fast_scene.h"
+#include "pipeline/raster/triangle.h"
+
+using namespace ffsim;
+using namespace ffsim::test;
+
+namespace {
+
+#ifdef FFSIM_SANITIZE
+constexpr int kCases = 20;  // per profile; keeps each test case well under 10 s under ASan
+#else
+constexpr int kCases = 40;
+#endif
+
+struct Pair {
+  Context fast, slow;
+  explicit Pair(const char* profile, int w = 37, int h = 29)
+      : fast(profile_named(profile), w, h), slow(profile_named(profile), w, h) {
+    slow.set_fast_paths(false);
+  }
+};
+
+// Draws `cases` scenes per profile both ways; returns the span-path runs taken.
+std::uint64_t compare_scenes(const SceneOptions& opt, std::uint32_t seed0, int cases) {
+  std::uint64_t runs = 0;
+  for (const char* profile : kFastProfiles) {
+    for (int k = 0; k < cases; ++k) {
+      Pair p(profile);
+      const auto seed = seed0 + static_cast<std::uint32_t>(k);
+      draw_random_scene(p.fast, seed, opt);
+      draw_random_scene(p.slow, seed, opt);
+      INFO("profile ", profile, " seed ", seed);
+      REQUIRE(buffer_hashes(p.fast) == buffer_hashes(p.slow));
+      CHECK(p.slow.fast_runs() == 0);
+      runs += p.fast.fast_runs();
+    }
+  }
+  return runs;
+}
+
+}  // namespace
+
+TEST_CASE("fast draw: texture environments, colour sum and fragment ops, span path == per-fragment path") {
+  SceneOptions opt;
+  opt.combiners = false;
+  CHECK(compare_scenes(opt, 1000, kCases) > 500);  // the span path did run
+}
+
+TEST_CASE("fast draw: register combiners, span path == per-fragment path") {
+  SceneOptions opt;
+  CHECK(compare_scenes(opt, 5000, kCases) > 500);
+}
+
+TEST_CASE("fast draw: a planted difference is detected") {
+  // The comparison is sensitive: the same scenes with one texture-environment
+  // colour code changed in one context differ somewhere.
+  int differing = 0;
+  for (std::uint32_t seed = 1000; seed < 1040; ++seed) {
+    Pair p("geforce256");
+    SceneOptions opt;
+    opt.combiners = false;
+    draw_random_scene(p.fast, seed, opt);
+    draw_random_scene(p.slow, seed, opt);
+    // Plant: one more textured, blended quad in one context only.
+    p.fast.enable(gl::BLEND);
+    p.fast.blendFunc(gl::ONE, gl::ONE);
+    p.fast.disable(gl::DEPTH_TEST);
+    p.fast.disable(gl::STENCIL_TEST);
+    p.fast.disable(gl::ALPHA_TEST);
+    p.fast.disable(gl::SCISSOR_TEST);
+    p.fast.colorMask(true, true, true, true);
+    p.fast.color4(0.01, 0.01, 0.01, 0.01);
+    quad(p.fast, 3, 3, 4, 4);
+    differing += buffer_hashes(p.fast) != buffer_hashes(p.slow);
+  }
+  CHECK(differing > 0);
+}
+
+TEST_CASE("fast draw: interpolate_code_run equals interpolate_code on random runs") {
+  SceneRng r(77);
+  for (int k = 0; k < 2000; ++k) {
+    // A random triangle, and the run of one of its rows.
+    std::array<SnappedVertex, 3> v;
+    for (auto& p : v) p = {r.i(-400, 4000), r.i(-400, 4000)};
+    const int S = 4;
+    std::vector<CoverageRun> runs;
+    const TriangleCoverage cov = rasterize_triangle(v, S, -100, -100, 400, 400, [&](const TriangleCoverage&, const CoverageRun& run) {
+      if (runs.size() < 8) runs.push_back(run);
+    });
+    const std::uint32_t k0 = static_cast<std::uint32_t>(r.i(0, 65535)), k1 = static_cast<std::uint32_t>(r.i(0, 65535)),
+                        k2 = static_cast<std::uint32_t>(r.i(0, 16777215));
+    for (const CoverageRun& run : runs) {
+      std::vector<std::uint32_t> out(run.weight.size());
+      interpolate_code_run(run.weight[0], cov.dwdx, cov.area, k0, k1, k2, static_cast<int>(out.size()), out.data());
+      for (std::size_t i = 0; i < out.size(); ++i)
+        REQUIRE(out[i] == interpolate_code(run.weight[i], cov.area, k0, k1, k2));
+    }
+  }
+}
