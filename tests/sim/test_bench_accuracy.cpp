@@ -257,3 +257,37 @@ TEST_CASE("bench accuracy: a tiny configuration runs and its numbers can be deri
   CHECK(front >= 1);
   fs::remove_all(out);
 }
+
+TEST_CASE("bench accuracy: the 8/10/12-bit ladder flags a step that gets worse") {
+  // Hand-made rows: variant "a" improves at every step (0.03 -> 0.02 -> 0.01 disagreement,
+  // 0.3 -> 0.2 -> 0.1 RMSE), variant "b" gets worse from 10 to 12 bits in the RMSE.
+  ffsim::bench::AccuracyResult r;
+  auto add = [&](const std::string& v, const std::string& prof, double dis, double rmse) {
+    ffsim::bench::AccuracyRow row;
+    row.scene = "polygon";
+    row.size = 256;
+    row.variant.name = v;
+    row.profile = prof;
+    row.filter = 1;
+    row.acc.lights = 1;
+    row.acc.ideal_lights = 1;
+    row.acc.sum_ideal_dis = dis;
+    row.acc.sum_ideal_shaded = rmse;
+    r.rows.push_back(row);
+  };
+  add("a", "geforce256", 0.03, 0.3);
+  add("a", "rgba10", 0.02, 0.2);
+  add("a", "rgba12", 0.01, 0.1);
+  add("b", "geforce256", 0.03, 0.3);
+  add("b", "rgba10", 0.02, 0.2);
+  add("b", "rgba12", 0.02, 0.25);
+  add("c", "geforce256", 0.03, 0.3);  // no rgba10/rgba12: not in the table
+  const std::string md = ffsim::bench::precision_ladder(r);
+  CAPTURE(md);
+  CHECK(md.find("1 of 2 (scene, size, variant, filter) rows do not get worse") != std::string::npos);
+  CHECK(md.find("| polygon 256 | a | linear | 3.000 / 2.000 / 1.000 % | 0.3000 / 0.2000 / 0.1000 | not worse |") != std::string::npos);
+  CHECK(md.find("| polygon 256 | b | linear | 3.000 / 2.000 / 2.000 % | 0.3000 / 0.2000 / 0.2500 | **worse at a step** |") !=
+        std::string::npos);
+  CHECK(md.find("| polygon 256 | c |") == std::string::npos);
+  CHECK(ffsim::bench::precision_ladder(ffsim::bench::AccuracyResult{}).empty());
+}
