@@ -15,7 +15,7 @@ namespace ffsim::bumpshadow {
 HeightField hemisphere_bump(int width, int height, double radius, double cx, double cy, Border border) {
   if (!(radius > 0) || !std::isfinite(radius))
     throw HeightFieldError("bump radius " + std::to_string(radius) + " must be finite and > 0");
-  if (width < 2 || height < 2)  // the HeightField constructor words the error
+  if (width < 1 || height < 1)  // the HeightField constructor words the error
     return HeightField(width, height, {}, border);
   std::vector<double> z(static_cast<std::size_t>(width) * height, 0.0);
   for (int y = 0; y < height; ++y)

@@ -16,10 +16,10 @@ void Fnv64::f64(double d) {
 
 HeightField::HeightField(int width, int height, std::vector<double> heights, Border border)
     : w_(width), h_(height), z_(std::move(heights)), border_(border) {
-  if (w_ < 2 || h_ < 2 || w_ > kMaxHeightFieldSide || h_ > kMaxHeightFieldSide ||
+  if (w_ < 1 || h_ < 1 || w_ > kMaxHeightFieldSide || h_ > kMaxHeightFieldSide ||
       static_cast<long long>(w_) * h_ > kMaxHeightFieldTexels)
     throw HeightFieldError("height field size " + std::to_string(w_) + "x" + std::to_string(h_) +
-                           " is out of range (2..16384 per side, at most 2^26 texels)");
+                           " is out of range (1..16384 per side, at most 2^26 texels)");
   if (z_.size() != static_cast<std::size_t>(w_) * h_)
     throw HeightFieldError("height field has " + std::to_string(z_.size()) + " samples, expected " +
                            std::to_string(static_cast<std::size_t>(w_) * h_));
