@@ -250,7 +250,7 @@ constexpr double kTraceBytesPerFragment = 5;
 // threads, from its first point.
 Plot scaling_plot(const std::vector<TraceRow>& rows, bool threads) {
   Plot p;
-  p.title = threads ? "ffsim bench --perf: frames/s against worker threads (terrain)"
+  p.title = threads ? "ffsim bench --perf: frames/s against worker threads"
                     : "ffsim bench --perf: frames/s against pixels per frame, one thread";
   p.x_label = threads ? "worker threads" : "pixels per frame";
   p.y_label = "frames per second";
@@ -386,7 +386,8 @@ std::string perf_usage() {
          "  traces   frames/s of kautz-imaging-hard, kautz-imaging-aa, kautz-geforce-aa on the\n"
          "           polygon at 512^2 and the terrain at 640x480, one thread\n"
          "  scaling  frames/s of the same traces at 256^2, 512^2, 1024^2, 2048^2\n"
-         "  threads  frames/s of the terrain at 640x480 for 1 .. hardware threads\n"
+         "  threads  frames/s of the terrain at 640x480 and the polygon at 1024^2 for 1 ..\n"
+         "           hardware threads\n"
          "Median of --repeat N runs (default 7; 3 with --quick) after one warm-up, with min and max.\n"
          "--quick: 256^2 stages, the smaller sizes, about a minute. Writes perf_stages.csv,\n"
          "perf_traces.csv, perf_scaling.csv, perf_threads.csv and perf.md into --out\n"
@@ -496,11 +497,17 @@ int run_perf(const std::vector<std::string>& args, std::ostream& out, std::ostre
     if (o.threads) {
       Csv csv(fs::path(o.out_dir) / "perf_threads.csv", csv_header);
       table_head("Scaling with worker threads (`--threads`)");
+      // The terrain (small triangles: drawn whole on one thread) and the polygon at
+      // 1024^2 (two large triangles: split into row bands).
       for (const std::string& t : traces)
-        for (int n : o.thread_counts) {
-          thread_rows.push_back(run_trace_case(o, {t, "terrain", o.quick ? 320 : 640, o.quick ? 240 : 480, n}, o.repeat));
-          frame_line(thread_rows.back(), csv, "threads");
-        }
+        for (const char* scene : {"terrain", "polygon"})
+          for (int n : o.thread_counts) {
+            const bool terrain = std::string(scene) == "terrain";
+            const int w = terrain ? (o.quick ? 320 : 640) : (o.quick ? 256 : 1024);
+            const int h = terrain ? (o.quick ? 240 : 480) : w;
+            thread_rows.push_back(run_trace_case(o, {t, scene, w, h, n}, o.repeat));
+            frame_line(thread_rows.back(), csv, "threads");
+          }
       out << "\n";
       md << "\n" << floor_note;
       const std::string svg = "perf_threads.svg";
