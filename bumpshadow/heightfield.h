@@ -26,7 +26,7 @@ struct HeightFieldError : std::runtime_error {
 inline constexpr int kMaxHeightFieldSide = 16384;
 inline constexpr long long kMaxHeightFieldTexels = 1ll << 26;
 
-// Row-major heights. Construction validates: 2..16384 texels per side, at most
+// Row-major heights. Construction validates: 1..16384 texels per side, at most
 // 2^26 texels (a 1-texel side has no neighbour to cast or receive a shadow), the
 // sample count, and finiteness; every error names the offending value.
 class HeightField {

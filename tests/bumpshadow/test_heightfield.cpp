@@ -32,9 +32,10 @@ TEST_CASE("heightfield: bilinear sampling between texel centres") {
 
 TEST_CASE("heightfield: bad input is rejected with a reason") {
   CHECK_THROWS_AS(HeightField(0, 1, {}, Border::Wrap), HeightFieldError);
-  CHECK_THROWS_WITH_AS(HeightField(1, 5, {0, 0, 0, 0, 0}, Border::Wrap),
-                       "height field size 1x5 is out of range (2..16384 per side, at most 2^26 texels)",
+  CHECK_THROWS_WITH_AS(HeightField(0, 5, {}, Border::Wrap),
+                       "height field size 0x5 is out of range (1..16384 per side, at most 2^26 texels)",
                        HeightFieldError);
+  CHECK_NOTHROW(HeightField(1, 5, {0, 0, 0, 0, 0}, Border::Wrap));  // one texel per side is valid
   CHECK_THROWS_AS(HeightField(20000, 2, {}, Border::Wrap), HeightFieldError);
   CHECK_THROWS_AS(HeightField(2, 2, {0, 0, 0}, Border::Wrap), HeightFieldError);
   CHECK_THROWS_WITH_AS(HeightField(2, 2, {0, std::numeric_limits<double>::quiet_NaN(), 0, 0}, Border::Wrap),
