@@ -30,6 +30,7 @@
 #include <thread>
 
 #include "pipeline/gl/enums.h"
+#include "sim/bench/accuracy_metrics.h"
 #include "sim/bench/svg_plot.h"
 #include "sim/cli/cli.h"
 #include "sim/context.h"
@@ -57,21 +58,8 @@ struct Options {
   Sets sets;                       // --set NAME=EXPR for --trace
 };
 
-// Median, minimum and maximum of repeated timings (seconds).
-struct Timing {
-  double median = 0, min = 0, max = 0;
-};
-
-Timing summarise(std::vector<double> t) {
-  Timing s;
-  if (t.empty()) return s;
-  std::sort(t.begin(), t.end());
-  const std::size_t n = t.size();
-  s.median = n % 2 ? t[n / 2] : (t[n / 2 - 1] + t[n / 2]) / 2;
-  s.min = t.front();
-  s.max = t.back();
-  return s;
-}
+// Repeated timings (seconds): median, minimum and maximum (sim/bench/accuracy_metrics.h).
+using Timing = Spread;
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
@@ -194,7 +182,7 @@ StageRow run_stage(const Options& o, const Stage& st, int w, int repeat) {
     pass();
     times.push_back(seconds_since(t0));
   }
-  row.t = summarise(times);
+  row.t = spread(times);
   return row;
 }
 
@@ -235,7 +223,7 @@ TraceRow run_trace_case(const Options& o, const TraceCase& c, int repeat) {
     if (r == 0) row.fragments = static_cast<double>(ctx.fragments_written());
     else times.push_back(t);
   }
-  row.t = summarise(times);
+  row.t = spread(times);
   return row;
 }
 
@@ -358,7 +346,7 @@ int time_one_trace(const Options& o, std::ostream& out, std::ostream& err) {
       if (r > 0) times.push_back(seconds_since(t0));
       fragments = ctx.fragments_written();
     }
-    const Timing t = summarise(times);
+    const Timing t = spread(times);
     out << o.trace_file << ": " << prog.width << "x" << prog.height << ", " << prog.pass_count() << " passes, "
         << fragments << " fragments; median " << fixed(t.median * 1e3, 3) << " ms (" << fixed(t.min * 1e3, 3) << " .. "
         << fixed(t.max * 1e3, 3) << "), " << fixed(1 / t.median, 1) << " frames/s, "
