@@ -211,15 +211,20 @@ bumpshadow::Vec3 light_from(GeneratorArgs& a) {
   return {lx, ly, std::sqrt(1 - r2)};
 }
 
-Image shadowmap(GeneratorArgs& a) {
-  // field: a name or an index expression.
+// The `field` key (a generator name, or an index expression so a parameter can
+// choose) and that field's own keys; desc receives its description.
+bumpshadow::HeightField field_argument(GeneratorArgs& a, std::string& desc) {
   std::string field;
   const std::string ft = a.text("field", "bumps");
   for (const auto& n : field_names())
     if (n == ft) field = n;
   if (field.empty()) field = field_names()[static_cast<std::size_t>(a.integer("field", 1, 0, 4))];
+  return read_field(a, field, desc);
+}
+
+Image shadowmap(GeneratorArgs& a) {
   std::string desc;
-  bumpshadow::HeightField hf = read_field(a, field, desc);
+  bumpshadow::HeightField hf = field_argument(a, desc);
   const std::string map =
       a.word("map", {"t1r", "t2r", "t3r", "t1n", "t2n", "normal", "reference", "soft", "ellipse"});
   if (map == "normal") {
@@ -282,13 +287,8 @@ std::mutex& horizon_memo_mutex() {
 }
 
 Image horizon(GeneratorArgs& a) {
-  std::string field;
-  const std::string ft = a.text("field", "bumps");
-  for (const auto& n : field_names())
-    if (n == ft) field = n;
-  if (field.empty()) field = field_names()[static_cast<std::size_t>(a.integer("field", 1, 0, 4))];
   std::string desc;
-  bumpshadow::HeightField hf = read_field(a, field, desc);
+  bumpshadow::HeightField hf = field_argument(a, desc);
   const int n = static_cast<int>(a.integer("azimuths", 16, 1, 1024));
   const int index = static_cast<int>(a.integer("index", 0, 0, n - 1));
   const std::string cache = a.text("cache", "out/cache");

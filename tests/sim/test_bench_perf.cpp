@@ -10,21 +10,15 @@
 #include <sstream>
 #include <unistd.h>
 
+#include "cli_test_util.h"
 #include "sim/cli/cli.h"
 
 using namespace ffsim;
 namespace fs = std::filesystem;
 
 namespace {
-struct Run {
-  int code;
-  std::string out, err;
-};
-Run run(std::vector<std::string> args) {
-  std::ostringstream out, err;
-  const int code = cli::run(args, out, err);
-  return {code, out.str(), err.str()};
-}
+using test::Run;
+using test::run;
 std::vector<std::vector<std::string>> read_csv(const fs::path& p) {
   std::vector<std::vector<std::string>> rows;
   std::ifstream f(p);

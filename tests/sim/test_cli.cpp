@@ -2,20 +2,14 @@
 
 #include <sstream>
 
+#include "cli_test_util.h"
 #include "sim/cli/cli.h"
 
 using namespace ffsim;
 
 namespace {
-struct Run {
-  int code;
-  std::string out, err;
-};
-Run run(std::vector<std::string> args) {
-  std::ostringstream out, err;
-  const int code = cli::run(args, out, err);
-  return {code, out.str(), err.str()};
-}
+using test::Run;
+using test::run;
 }  // namespace
 
 TEST_CASE("cli: --version and --help") {

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <unistd.h>
 
+#include "cli_test_util.h"
 #include "sim/cli/cli.h"
 #include "sim/image_io.h"
 #include "sim/trace/error.h"
@@ -16,15 +17,8 @@ namespace fs = std::filesystem;
 using ffsim::trace::cat;
 
 namespace {
-struct Run {
-  int code;
-  std::string out, err;
-};
-Run run(std::vector<std::string> args) {
-  std::ostringstream out, err;
-  const int code = cli::run(args, out, err);
-  return {code, out.str(), err.str()};
-}
+using test::Run;
+using test::run;
 fs::path temp_dir(const std::string& name) {
   const fs::path d = fs::temp_directory_path() / cat("ffsim-cli-", std::to_string(::getpid()), "-", name);
   fs::remove_all(d);
