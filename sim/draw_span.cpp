@@ -38,6 +38,42 @@ void interpolate_colors(const std::array<const WindowVertex*, 3>& tv, bool secon
   }
 }
 
+// s/q and t/q of unit u at the run's fragments: the per-fragment path's
+// operations exactly (v_j = ((0 + w_0·c_0j) + w_1·c_1j) + w_2·c_2j, then v_j / A,
+// then v_0 / v_2 and v_1 / v_2, binary64), written as a loop over fragments the
+// compiler can vectorise (IEEE operations give the same bits in vector lanes).
+// When the three q/w are exactly 1 (an affine mapping with w_clip = 1, e.g. an
+// orthographic screen quad) and A < 2^53, v_2 = (Σ w_k)/A = A/A = 1 exactly (the
+// integer weights and their partial sums are exact in binary64), and x / 1 = x:
+// v_2 and the two divisions by it are skipped with the same result.
+void texture_coordinates(const std::array<const WindowVertex*, 3>& tv, int u, std::int64_t area,
+                         const CoverageRun& run, int n, double* s, double* t) {
+  const double a = static_cast<double>(area);
+  const auto& c0 = tv[0]->tcw[u];
+  const auto& c1 = tv[1]->tcw[u];
+  const auto& c2 = tv[2]->tcw[u];
+  const std::array<std::int64_t, 3>* w = run.weight.data();
+  const bool unit_q = c0[2] == 1.0 && c1[2] == 1.0 && c2[2] == 1.0 && area < (std::int64_t{1} << 53);
+  if (unit_q) {
+    for (int f = 0; f < n; ++f) {
+      const double w0 = static_cast<double>(w[f][0]), w1 = static_cast<double>(w[f][1]),
+                   w2 = static_cast<double>(w[f][2]);
+      s[f] = (((0.0 + w0 * c0[0]) + w1 * c1[0]) + w2 * c2[0]) / a;
+      t[f] = (((0.0 + w0 * c0[1]) + w1 * c1[1]) + w2 * c2[1]) / a;
+    }
+    return;
+  }
+  for (int f = 0; f < n; ++f) {
+    const double w0 = static_cast<double>(w[f][0]), w1 = static_cast<double>(w[f][1]),
+                 w2 = static_cast<double>(w[f][2]);
+    const double v0 = (((0.0 + w0 * c0[0]) + w1 * c1[0]) + w2 * c2[0]) / a;
+    const double v1 = (((0.0 + w0 * c0[1]) + w1 * c1[1]) + w2 * c2[1]) / a;
+    const double q = (((0.0 + w0 * c0[2]) + w1 * c1[2]) + w2 * c2[2]) / a;
+    s[f] = v0 / q;
+    t[f] = v1 / q;
+  }
+}
+
 }  // namespace
 
 bool Context::shade_run_fast(const ShadingState& st, const ShadingPlan& plan,
@@ -68,22 +104,11 @@ bool Context::shade_run_fast(const ShadingState& st, const ShadingPlan& plan,
   }
   // Texture coordinates (the per-fragment path's operations exactly: Σ in k
   // order from 0, divided by A, then s/q and t/q) and the span's texels.
-  const double a = static_cast<double>(cov.area);
   sc.s.resize(N);
   sc.t.resize(N);
   for (int u = 0; u < kShadeUnits; ++u) {
     if (!plan.sample[u]) continue;
-    for (int f = 0; f < n; ++f) {
-      const auto& w = run.weight[static_cast<std::size_t>(f)];
-      std::array<double, 3> v{};
-      for (int j = 0; j < 3; ++j) {
-        for (int k = 0; k < 3; ++k) v[j] += static_cast<double>(w[k]) * tv[k]->tcw[u][j];
-        v[j] /= a;
-      }
-      const double q = v[2];
-      sc.s[static_cast<std::size_t>(f)] = v[0] / q;
-      sc.t[static_cast<std::size_t>(f)] = v[1] / q;
-    }
+    texture_coordinates(tv, u, cov.area, run, n, sc.s.data(), sc.t.data());
     sc.texels[u].resize(4 * N);
     sample_span_fixed(*st.units[u].texture, st.units[u].dims, sc.s.data(), sc.t.data(), n, st.sample,
                       sc.texels[u].data());

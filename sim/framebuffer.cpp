@@ -64,10 +64,22 @@ Rect intersect(const Rect& a, const Rect& b) {
 
 void Framebuffer::clear_color(const Rect& r0, const std::array<double, 4>& rgba, const std::array<bool, 4>& mask) {
   const Rect r = intersect(r0, bounds());
+  if (r.width == 0 || r.height == 0) return;
+  // The clear colour is converted once (store_color_value's rule: a code, or a
+  // clamped binary32/64 value) and copied; every pixel gets the same bits.
+  const int x0 = r.x, y0 = r.y;
+  for (int c = 0; c < 4; ++c)
+    if (mask[c]) store_color_value(x0, y0, c, rgba[c]);
+  const std::size_t first = 4 * index(x0, y0);
   for (int y = r.y; y < r.y + r.height; ++y)
-    for (int x = r.x; x < r.x + r.width; ++x)
-      for (int c = 0; c < 4; ++c)
-        if (mask[c]) store_color_value(x, y, c, rgba[c]);
+    for (int x = r.x; x < r.x + r.width; ++x) {
+      const std::size_t i = 4 * index(x, y);
+      for (std::size_t c = 0; c < 4; ++c) {
+        if (!mask[c]) continue;
+        if (fmt_.float_color()) values_[i + c] = values_[first + c];
+        else codes_[i + c] = codes_[first + c];
+      }
+    }
 }
 
 void Framebuffer::clear_stencil(const Rect& r0, std::uint32_t value, std::uint32_t writemask) {

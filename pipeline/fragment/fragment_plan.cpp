@@ -269,18 +269,32 @@ struct FixedKernel {
         for (int j = 0; j < n; ++j) out[j] = finish(static_cast<I>(cd[j]) * static_cast<I>(D[j]));
         return;
       case ChannelOp::Add:
+        if (key.blend_src == gl::ONE && key.blend_dst == gl::ONE) {
+          // finish((s + d)·M) = min(s + d, M): (2(s + d)M + M) / 2M = s + d, and the
+          // clamp at M² gives M (numerics §7). The additive pass of the paper.
+          for (int j = 0; j < n; ++j) out[j] = std::min(cs[j] + cd[j], m);
+          return;
+        }
         factor(key.blend_src, c, kc, n, S);
         factor(key.blend_dst, c, kc, n, D);
         for (int j = 0; j < n; ++j)
           out[j] = finish(static_cast<I>(cs[j]) * static_cast<I>(S[j]) + static_cast<I>(cd[j]) * static_cast<I>(D[j]));
         return;
       case ChannelOp::Sub:
+        if (key.blend_src == gl::ONE && key.blend_dst == gl::ONE) {  // finish((s − d)·M) = max(s − d, 0)
+          for (int j = 0; j < n; ++j) out[j] = cs[j] > cd[j] ? cs[j] - cd[j] : 0u;
+          return;
+        }
         factor(key.blend_src, c, kc, n, S);
         factor(key.blend_dst, c, kc, n, D);
         for (int j = 0; j < n; ++j)
           out[j] = finish(static_cast<I>(cs[j]) * static_cast<I>(S[j]) - static_cast<I>(cd[j]) * static_cast<I>(D[j]));
         return;
       case ChannelOp::RevSub:
+        if (key.blend_src == gl::ONE && key.blend_dst == gl::ONE) {  // finish((d − s)·M) = max(d − s, 0)
+          for (int j = 0; j < n; ++j) out[j] = cd[j] > cs[j] ? cd[j] - cs[j] : 0u;
+          return;
+        }
         factor(key.blend_src, c, kc, n, S);
         factor(key.blend_dst, c, kc, n, D);
         for (int j = 0; j < n; ++j)

@@ -124,6 +124,10 @@ void interpolate_code_run(const std::array<std::int64_t, 3>& w0, const std::arra
                           std::int64_t area, std::uint32_t k0, std::uint32_t k1, std::uint32_t k2, int n,
                           std::uint32_t* out) {
   if (n <= 0) return;
+  if (k0 == k1 && k1 == k2) {  // Σ w_k = A: floor((2·k·A + A) / 2A) = k, no division needed
+    std::fill_n(out, n, k0);
+    return;
+  }
   __extension__ typedef __int128 i128;
   const i128 D = 2 * i128{area};
   const i128 x0 = 2 * (i128{w0[0]} * k0 + i128{w0[1]} * k1 + i128{w0[2]} * k2) + area;  // >= 0 inside

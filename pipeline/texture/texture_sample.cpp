@@ -456,8 +456,6 @@ void sample_span_fixed(const TextureObject& tex, int dims, const double* s, cons
   L.hs = level_height(im, dims);
   L.ncomp = component_count(im.base);
   L.B = fmt.weight_bits;
-  const std::array<double, 4> bd = border_components(im.base, tex.params.border_color);
-  for (int c = 0; c < L.ncomp; ++c) L.border[c] = unorm_from_double(bd[c], im.bits);
   L.one_code = unorm_max(im.bits);
   // expand_texel's table as indices into the stored components.
   switch (im.base) {
@@ -471,6 +469,10 @@ void sample_span_fixed(const TextureObject& tex, int dims, const double* s, cons
   const bool linear = tex.params.mag_filter == gl::LINEAR;
   const bool direct = !linear || (tex.params.wrap_s != gl::CLAMP && tex.params.wrap_t != gl::CLAMP);
   const bool narrow = im.bits + 2 * L.B <= 31;
+  if (!direct) {  // only CLAMP with LINEAR can reach the border colour
+    const std::array<double, 4> bd = border_components(im.base, tex.params.border_color);
+    for (int c = 0; c < L.ncomp; ++c) L.border[c] = unorm_from_double(bd[c], im.bits);
+  }
   if (!linear) span_level<false, true, std::uint64_t, 0>(L, s, t, n, out);
   else if (direct && narrow && L.ncomp == 4) span_level<true, true, std::uint32_t, 4>(L, s, t, n, out);
   else if (direct && narrow && L.ncomp == 3) span_level<true, true, std::uint32_t, 3>(L, s, t, n, out);

@@ -374,3 +374,38 @@ TEST_CASE("plan vs full path: the equivalence test detects a wrong plan") {
   CHECK(p.code(0, 0, 0) == 250);
   CHECK(f.code(0, 0, 0) == 50);
 }
+
+TEST_CASE("plan vs full path: blend (ONE, ONE) add, subtract and reverse subtract on every pair of 8-bit codes") {
+  // The planned path computes these as min(s + d, M), max(s − d, 0) and
+  // max(d − s, 0) (fragment_plan.cpp); the full path evaluates blend_code's
+  // rnd(clamp01((s·M ± d·M) / M²)·M). Every (s, d) pair in every channel, and a
+  // 12-bit target (colour maximum not known at compile time) on a sample.
+  for (const GLenum eq : {gl::FUNC_ADD, gl::FUNC_SUBTRACT, gl::FUNC_REVERSE_SUBTRACT}) {
+    FragmentOpsState s;
+    s.blend = {true, gl::ONE, gl::ONE, eq, {}};
+    Buffers b(target8(256, 256, 0, 0));
+    for (int y = 0; y < 256; ++y)
+      for (int x = 0; x < 256; ++x)
+        for (int c = 0; c < 4; ++c) b.codes[4 * b.px(x, y) + c] = static_cast<std::uint16_t>(c % 2 ? 255 - x : x);
+    for (int y = 0; y < 256; ++y) {
+      std::vector<std::array<std::uint16_t, 4>> src(256);
+      for (auto& k : src) k = {static_cast<std::uint16_t>(y), static_cast<std::uint16_t>(255 - y), static_cast<std::uint16_t>(y), static_cast<std::uint16_t>(255 - y)};
+      b = run_both(s, b, span_codes(y, 0, src));
+    }
+    // Spot values: s = y, d = x on channel 0.
+    const auto expect = [&](int sv, int dv) {
+      return eq == gl::FUNC_ADD ? std::min(sv + dv, 255) : eq == gl::FUNC_SUBTRACT ? std::max(sv - dv, 0) : std::max(dv - sv, 0);
+    };
+    for (const auto& [x, y] : {std::pair{0, 0}, {200, 100}, {100, 200}, {255, 255}, {17, 254}})
+      CHECK(b.code(x, y, 0) == expect(y, x));
+    Buffers w({64, 4, Arithmetic::Fixed, 12, 0, 0});
+    std::mt19937 rng(static_cast<unsigned>(eq));
+    for (auto& k : w.codes) k = static_cast<std::uint16_t>(rng() % 4096);
+    for (int y = 0; y < 4; ++y) {
+      std::vector<std::array<std::uint16_t, 4>> src(64);
+      for (auto& k : src)
+        for (auto& v : k) v = static_cast<std::uint16_t>(rng() % 4096);
+      w = run_both(s, w, span_codes(y, 0, src));
+    }
+  }
+}
