@@ -444,6 +444,101 @@ void span_level(const SpanLevel& L, const double* s, const double* t, int n, std
   }
 }
 
+// LINEAR with REPEAT on both axes, every index inside the image, the weighted
+// sum in 32 bits (texel bits + 2B <= 31): span_level<true, true, uint32_t, NC>'s
+// numbers in two passes, so the compiler can vectorise the first.
+//  1. per fragment, the x axis exactly as linear_axis_pow2(REPEAT): non-finite ->
+//     0, s − floor(s), ·n − 1/2, floor, the fraction's B-bit weight, the indices
+//     masked by n − 1 (floor is exact, so std::floor and floor_f agree);
+//  2. per fragment, the four texels and the sum rounded once, as span_level.
+// A span whose x and y weights are all 0 (texel-aligned sampling) reads one
+// texel: (k·2^2B + 2^(2B−1)) >> 2B = k.
+constexpr int kAxisChunk = 64;
+
+void repeat_axis(const double* s, int n, int size, float two_b, std::int32_t* i0, std::int32_t* i1,
+                 std::uint32_t* w) {
+  const auto nf = static_cast<float>(size);
+  const std::int32_t mask = size - 1;
+  for (int f = 0; f < n; ++f) {
+    float x = static_cast<float>(s[f]);
+    x = std::isfinite(x) ? x : 0.0f;
+    x = x - std::floor(x);
+    x = x * nf - 0.5f;
+    const float fl = std::floor(x);
+    const auto i = static_cast<std::int32_t>(fl);
+    i0[f] = i & mask;
+    i1[f] = (i + 1) & mask;
+    w[f] = static_cast<std::uint32_t>((x - fl) * two_b);
+  }
+}
+
+template <int NC>
+void span_linear_repeat(const SpanLevel& L, const double* s, const double* t, int n, std::uint16_t* out) {
+  const TextureImage& im = *L.im;
+  const int nc = NC ? NC : L.ncomp, b = im.border;
+  const std::uint16_t* codes = im.codes.data();
+  const std::size_t W = static_cast<std::size_t>(im.width);
+  const std::uint32_t one = 1u << L.B;
+  const int B2 = 2 * L.B;
+  const std::uint32_t half = 1u << (B2 - 1);
+  const float two_b = std::ldexp(1.0f, L.B);
+  bool t_const = true;
+  for (int f = 1; f < n && t_const; ++f) t_const = t[f] == t[0];
+  alignas(32) std::int32_t x0[kAxisChunk], x1[kAxisChunk], y0[kAxisChunk], y1[kAxisChunk];
+  alignas(32) std::uint32_t wx[kAxisChunk], wy[kAxisChunk];
+  auto texel = [&](std::int32_t i, std::int32_t j) {
+    return codes + ((static_cast<std::size_t>(j + b) * W) + static_cast<std::size_t>(i + b)) * static_cast<std::size_t>(nc);
+  };
+  auto store = [&](std::uint16_t* o, const std::uint32_t* k) {
+    if constexpr (NC == 4) {  // RGBA: expand_texel is the identity
+      for (int c = 0; c < 4; ++c) o[c] = static_cast<std::uint16_t>(k[c]);
+    } else if constexpr (NC == 3) {  // RGB: (R, G, B, 1)
+      for (int c = 0; c < 3; ++c) o[c] = static_cast<std::uint16_t>(k[c]);
+      o[3] = static_cast<std::uint16_t>(L.one_code);
+    } else {
+      for (int c = 0; c < 4; ++c) {
+        const int e = L.expand[c];
+        o[c] = static_cast<std::uint16_t>(e < 4 ? k[e] : e == 5 ? L.one_code : 0u);
+      }
+    }
+  };
+  for (int first = 0; first < n; first += kAxisChunk) {
+    const int m = std::min(kAxisChunk, n - first);
+    repeat_axis(s + first, m, L.ws, two_b, x0, x1, wx);
+    if (t_const) {
+      if (first == 0) repeat_axis(t, 1, L.hs, two_b, y0, y1, wy);
+      std::fill_n(y0 + 1, m - 1, y0[0]);
+      std::fill_n(y1 + 1, m - 1, y1[0]);
+      std::fill_n(wy + 1, m - 1, wy[0]);
+    } else {
+      repeat_axis(t + first, m, L.hs, two_b, y0, y1, wy);
+    }
+    std::uint32_t any = 0;
+    for (int f = 0; f < m; ++f) any |= wx[f] | wy[f];
+    std::uint16_t* o = out + 4 * static_cast<std::size_t>(first);
+    std::uint32_t k[4] = {0, 0, 0, 0};
+    if (any == 0) {  // every weight (1, 0, 0, 0): the texel at (i0, j0)
+      for (int f = 0; f < m; ++f, o += 4) {
+        const std::uint16_t* q = texel(x0[f], y0[f]);
+        for (int c = 0; c < nc; ++c) k[c] = q[c];
+        store(o, k);
+      }
+      continue;
+    }
+    for (int f = 0; f < m; ++f, o += 4) {
+      const std::uint32_t a = wx[f], bb = wy[f];
+      const std::uint32_t w00 = (one - a) * (one - bb), w10 = a * (one - bb), w01 = (one - a) * bb, w11 = a * bb;
+      const std::uint16_t *t00 = texel(x0[f], y0[f]), *t10 = texel(x1[f], y0[f]);
+      const std::uint16_t *t01 = texel(x0[f], y1[f]), *t11 = texel(x1[f], y1[f]);
+      for (int c = 0; c < nc; ++c) {
+        const std::uint32_t sum = t00[c] * w00 + t10[c] * w10 + t01[c] * w01 + t11[c] * w11;
+        k[c] = (sum + half) >> B2;
+      }
+      store(o, k);
+    }
+  }
+}
+
 }  // namespace
 
 void sample_span_fixed(const TextureObject& tex, int dims, const double* s, const double* t, int n,
@@ -473,7 +568,11 @@ void sample_span_fixed(const TextureObject& tex, int dims, const double* s, cons
     const std::array<double, 4> bd = border_components(im.base, tex.params.border_color);
     for (int c = 0; c < L.ncomp; ++c) L.border[c] = unorm_from_double(bd[c], im.bits);
   }
-  if (!linear) span_level<false, true, std::uint64_t, 0>(L, s, t, n, out);
+  const bool repeat = tex.params.wrap_s == gl::REPEAT && tex.params.wrap_t == gl::REPEAT;
+  if (linear && repeat && narrow && L.ncomp == 4) span_linear_repeat<4>(L, s, t, n, out);
+  else if (linear && repeat && narrow && L.ncomp == 3) span_linear_repeat<3>(L, s, t, n, out);
+  else if (linear && repeat && narrow) span_linear_repeat<0>(L, s, t, n, out);
+  else if (!linear) span_level<false, true, std::uint64_t, 0>(L, s, t, n, out);
   else if (direct && narrow && L.ncomp == 4) span_level<true, true, std::uint32_t, 4>(L, s, t, n, out);
   else if (direct && narrow && L.ncomp == 3) span_level<true, true, std::uint32_t, 3>(L, s, t, n, out);
   else if (direct && narrow) span_level<true, true, std::uint32_t, 0>(L, s, t, n, out);

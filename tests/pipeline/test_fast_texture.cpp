@@ -2,7 +2,8 @@
 //  - sample_span_fixed (pipeline/texture/texture_sample.cpp) == sample_texture
 //    on random 2D textures (every base format, 1..64 texels a side, border 0/1,
 //    NEAREST/LINEAR, every wrap, weight bits 1..16, texel widths 1..16) at random
-//    coordinates (texel centres, edges, far outside, negative, ±inf, NaN);
+//    coordinates (texel centres, edges, far outside, negative, ±inf, NaN; whole
+//    spans of texel centres);
 //  - texture_environment_span_fixed (pipeline/texenv/texenv.cpp) ==
 //    texture_environment on random environments (every classic mode and base
 //    format, every COMBINE function, source, operand and scale, DOT3 ARB/EXT)
@@ -63,21 +64,33 @@ double random_coord(std::mt19937& g, int size) {
   }
 }
 
-void compare_sampling(unsigned seed, int iterations) {
+// repeat_linear: every texture LINEAR with REPEAT on both axes (the two-pass
+// kernel span_linear_repeat, for every base format and width).
+void compare_sampling(unsigned seed, int iterations, bool repeat_linear = false) {
   std::mt19937 g(seed);
   int linear = 0;
   for (int it = 0; it < iterations; ++it) {
     const int bits = it % 3 == 0 ? 1 + static_cast<int>(g() % 16) : 8;
-    const TextureObject tex = random_texture(g, bits);
+    TextureObject tex = random_texture(g, bits);
+    if (repeat_linear) {
+      tex.params.min_filter = tex.params.mag_filter = gl::LINEAR;
+      tex.params.wrap_s = tex.params.wrap_t = gl::REPEAT;
+    }
     const SampleFormat fmt{Arithmetic::Fixed, it % 4 == 0 ? 1 + static_cast<int>(g() % 16) : 8};
     REQUIRE(sample_span_supported(tex, 2, fmt));
     linear += tex.params.mag_filter == gl::LINEAR;
     const int n = 1 + static_cast<int>(g() % 40);
     std::vector<double> s(static_cast<std::size_t>(n)), t(static_cast<std::size_t>(n));
     const bool row = g() % 2;  // one t for the whole span (the constant-t shortcut)
+    // Texel-aligned spans: every coordinate a texel centre, so every LINEAR weight
+    // is 0 (the one-texel shortcut of span_linear_repeat).
+    const bool aligned = g() % 5 == 0;
+    const int ws = level_width(tex.levels[0]), hs = level_height(tex.levels[0], 2);
     for (int f = 0; f < n; ++f) {
-      s[static_cast<std::size_t>(f)] = random_coord(g, level_width(tex.levels[0]));
-      t[static_cast<std::size_t>(f)] = row && f > 0 ? t[0] : random_coord(g, level_height(tex.levels[0], 2));
+      s[static_cast<std::size_t>(f)] = aligned ? (static_cast<int>(g() % (4 * ws)) - ws + 0.5) / ws : random_coord(g, ws);
+      t[static_cast<std::size_t>(f)] = row && f > 0 ? t[0]
+                                       : aligned ? (static_cast<int>(g() % (4 * hs)) - hs + 0.5) / hs
+                                                 : random_coord(g, hs);
     }
     std::vector<std::uint16_t> out(4 * static_cast<std::size_t>(n));
     sample_span_fixed(tex, 2, s.data(), t.data(), n, fmt, out.data());
@@ -169,6 +182,10 @@ int compare_env(std::mt19937& g, int bits, bool plant) {
 
 TEST_CASE("fast texture: sample_span_fixed == sample_texture, random textures and coordinates") {
   compare_sampling(41, 3000);
+}
+
+TEST_CASE("fast texture: sample_span_fixed == sample_texture, LINEAR and REPEAT on both axes") {
+  compare_sampling(44, 3000, true);
 }
 
 TEST_CASE("fast texture: texture_environment_span_fixed == texture_environment, widths 8, 10, 12 and odd") {
