@@ -27,7 +27,8 @@ void interpolate_colors(const std::array<const WindowVertex*, 3>& tv, bool secon
                         std::uint16_t* out) {
   auto code = [&](const WindowVertex* v, int c) { return secondary ? v->secondary_code[c] : v->color_code[c]; };
   for (int c = 0; c < 4; ++c) {
-    if (flat) {
+    // Flat shading, or three equal codes (Σ w_k = A: the value is the code).
+    if (flat || (code(tv[0], c) == code(tv[1], c) && code(tv[1], c) == code(tv[2], c))) {
       const auto k = static_cast<std::uint16_t>(code(tv[0], c));
       for (int f = 0; f < n; ++f) out[4 * f + c] = k;
       continue;
