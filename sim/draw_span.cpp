@@ -107,9 +107,22 @@ bool Context::shade_run_fast(const ShadingState& st, const ShadingPlan& plan,
   // order from 0, divided by A, then s/q and t/q) and the span's texels.
   sc.s.resize(N);
   sc.t.resize(N);
+  int coords_of = -1;  // the unit whose coordinates sc.s, sc.t hold
+  auto same_coords = [&](int a, int b) {  // the same s/w, t/w, q/w at all three vertices
+    for (int k = 0; k < 3; ++k)
+      if (tv[k]->tcw[a] != tv[k]->tcw[b]) return false;
+    return true;
+  };
   for (int u = 0; u < kShadeUnits; ++u) {
     if (!plan.sample[u]) continue;
-    texture_coordinates(tv, u, cov.area, run, n, sc.s.data(), sc.t.data());
+    // Units fed the same coordinates (the paper's maps on units 0 and 1) get the
+    // same s/q, t/q: computed once. (−0 == +0, and the two give the same sums:
+    // every sum starts from +0, so a ±0 term changes nothing. A NaN never
+    // compares equal: it recomputes.)
+    if (coords_of < 0 || !same_coords(coords_of, u)) {
+      texture_coordinates(tv, u, cov.area, run, n, sc.s.data(), sc.t.data());
+      coords_of = u;
+    }
     sc.texels[u].resize(4 * N);
     sample_span_fixed(*st.units[u].texture, st.units[u].dims, sc.s.data(), sc.t.data(), n, st.sample,
                       sc.texels[u].data());
