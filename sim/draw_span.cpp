@@ -26,9 +26,16 @@ void interpolate_colors(const std::array<const WindowVertex*, 3>& tv, bool secon
                         const CoverageRun& run, bool flat, int n, std::vector<std::uint32_t>& lane,
                         std::uint16_t* out) {
   auto code = [&](const WindowVertex* v, int c) { return secondary ? v->secondary_code[c] : v->color_code[c]; };
+  auto constant = [&](int c) { return flat || (code(tv[0], c) == code(tv[1], c) && code(tv[1], c) == code(tv[2], c)); };
+  if (constant(0) && constant(1) && constant(2) && constant(3)) {  // one colour for the whole run
+    const std::array<std::uint16_t, 4> k{static_cast<std::uint16_t>(code(tv[0], 0)), static_cast<std::uint16_t>(code(tv[0], 1)),
+                                         static_cast<std::uint16_t>(code(tv[0], 2)), static_cast<std::uint16_t>(code(tv[0], 3))};
+    for (int f = 0; f < n; ++f) std::copy_n(k.data(), 4, out + 4 * f);
+    return;
+  }
   for (int c = 0; c < 4; ++c) {
     // Flat shading, or three equal codes (Σ w_k = A: the value is the code).
-    if (flat || (code(tv[0], c) == code(tv[1], c) && code(tv[1], c) == code(tv[2], c))) {
+    if (constant(c)) {
       const auto k = static_cast<std::uint16_t>(code(tv[0], c));
       for (int f = 0; f < n; ++f) out[4 * f + c] = k;
       continue;

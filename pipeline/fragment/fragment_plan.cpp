@@ -307,9 +307,65 @@ struct FixedKernel {
   }
 };
 
+// The written channels all use one of the integer forms of FixedKernel::channel
+// with (ONE, ONE) factors, or MIN / MAX: computed on the interleaved codes
+// directly (no de-interleaving), the same values. 0: not applicable.
+enum class Interleaved : std::uint8_t { None, Add, Sub, RevSub, Min, Max };
+
+Interleaved interleaved_op(const FragmentPlanKey& key) {
+  Interleaved op = Interleaved::None;
+  for (int c = 0; c < 4; ++c) {
+    const ChannelOp ch = key.channel[c];
+    if (ch == ChannelOp::Keep) continue;
+    const bool one_one = key.blend_src == gl::ONE && key.blend_dst == gl::ONE;
+    Interleaved o = Interleaved::None;
+    if (ch == ChannelOp::Add && one_one) o = Interleaved::Add;
+    else if (ch == ChannelOp::Sub && one_one) o = Interleaved::Sub;
+    else if (ch == ChannelOp::RevSub && one_one) o = Interleaved::RevSub;
+    else if (ch == ChannelOp::Min) o = Interleaved::Min;
+    else if (ch == ChannelOp::Max) o = Interleaved::Max;
+    if (o == Interleaved::None || (op != Interleaved::None && o != op)) return Interleaved::None;
+    op = o;
+  }
+  return op;
+}
+
+template <Interleaved kOp>
+void color_interleaved(std::uint16_t m, const std::uint16_t* in, std::uint16_t* px, int n, const std::uint16_t* wmask,
+                       const std::uint8_t* alive) {
+  for (int j = 0; j < n; ++j) {
+    const std::uint16_t a = alive[j] ? 0xFFFF : 0;
+    for (int c = 0; c < 4; ++c) {
+      const std::uint16_t s = in[4 * j + c], d = px[4 * j + c];
+      std::uint16_t r;
+      if constexpr (kOp == Interleaved::Add) r = static_cast<std::uint16_t>(std::min<std::uint32_t>(std::uint32_t{s} + d, m));
+      else if constexpr (kOp == Interleaved::Sub) r = static_cast<std::uint16_t>(s > d ? s - d : 0);
+      else if constexpr (kOp == Interleaved::RevSub) r = static_cast<std::uint16_t>(d > s ? d - s : 0);
+      else if constexpr (kOp == Interleaved::Min) r = std::min(s, d);
+      else r = std::max(s, d);
+      const std::uint16_t w = a & wmask[c];
+      px[4 * j + c] = static_cast<std::uint16_t>((r & w) | (d & ~w));
+    }
+  }
+}
+
 template <std::uint32_t kM>
 void color_stage_fixed(const FragmentPlan& plan, const FragmentConstants& k, const FragmentSpan& sp,
                        const FragmentBuffers& b, std::size_t row, int start, int n, const std::uint8_t* alive) {
+  if (const Interleaved op = interleaved_op(plan.key); op != Interleaved::None) {
+    const std::uint16_t* in = sp.codes.data() + 4 * static_cast<std::size_t>(start);
+    std::uint16_t* px = b.codes + 4 * (row + static_cast<std::size_t>(sp.x0 + start));
+    std::uint16_t wmask[4];
+    for (int c = 0; c < 4; ++c) wmask[c] = plan.key.channel[c] != ChannelOp::Keep ? 0xFFFF : 0;
+    const auto m = static_cast<std::uint16_t>(kM ? kM : k.color_max);
+    switch (op) {
+      case Interleaved::Add: color_interleaved<Interleaved::Add>(m, in, px, n, wmask, alive); return;
+      case Interleaved::Sub: color_interleaved<Interleaved::Sub>(m, in, px, n, wmask, alive); return;
+      case Interleaved::RevSub: color_interleaved<Interleaved::RevSub>(m, in, px, n, wmask, alive); return;
+      case Interleaved::Min: color_interleaved<Interleaved::Min>(m, in, px, n, wmask, alive); return;
+      default: color_interleaved<Interleaved::Max>(m, in, px, n, wmask, alive); return;
+    }
+  }
   FixedKernel<kM> kern;
   kern.M = k.color_max;
   const std::uint16_t* in = sp.codes.data() + 4 * static_cast<std::size_t>(start);
