@@ -178,6 +178,8 @@ TEST_CASE("fast threads: the probe keeps one thread") {
   ctx.probe().set_target(5, 5);
   draw_random_scene(ctx, 301);
   CHECK(ctx.split_triangles() == 0);
+  draw_mesh_scene(ctx, 700);  // glEnd batches worth splitting
+  CHECK(ctx.split_batches() == 0);
 }
 
 TEST_CASE("fast threads: the pool runs every task once and rethrows a task's exception") {
