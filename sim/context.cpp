@@ -1,4 +1,5 @@
 #include "sim/context.h"
+#include "sim/draw_span.h"  // WindowVertex (the batch of the draw path)
 
 #include "pipeline/gl/enum_names.h"
 

@@ -393,8 +393,11 @@ class Context {
   bool fast_paths() const { return fast_paths_; }
   // Runs of fragments the span path has shaded so far (tests check it is taken).
   std::uint64_t fast_runs() const { return fast_runs_; }
-  // Triangles whose rows were split across threads (threads() > 1, no probe,
-  // bounding box of at least kSplitFragments pixels).
+  // Threads (threads() > 1, no probe): the polygons of a glEnd are prepared in
+  // batches of up to kBatchTriangles triangles; a batch whose triangles' bounding
+  // boxes sum to at least kSplitFragments pixels is rasterized in row bands on
+  // the pool. Batches so split, and the triangles they held.
+  std::uint64_t split_batches() const { return split_batches_; }
   std::uint64_t split_triangles() const { return split_triangles_; }
 
  private:
@@ -496,8 +499,37 @@ class Context {
   bool reject_in_begin(const char* function);
   bool tex_parameter(const char* function, GLenum target, GLenum pname, const double* v, int count);
   bool tex_env(const char* function, GLenum target, GLenum pname, const double* v, int count);
-  void draw_polygon(std::vector<ClipVertex> poly, std::size_t provoking, const ShadingState& st,
-                    const ShadingPlan& plan);
+  // Drawing (sim/draw.cpp). One glEnd's constants: nothing in them can change
+  // inside glBegin/glEnd.
+  struct DrawSetup {
+    const ShadingState* st = nullptr;
+    const ShadingPlan* plan = nullptr;
+    bool flat = false, shade = false, has_depth = false;
+    int vx = 0, vy = 0;                      // viewport corner
+    double hw = 0, hh = 0;                   // viewport half width and height
+    int cx0 = 0, cy0 = 0, cx1 = 0, cy1 = 0;  // the window, relative to the viewport corner
+    bool bands = false;                      // threads: polygons batched and rows split (no probe)
+    FragmentBuffers buffers;                 // bands only: the framebuffer's arrays
+  };
+  // Shared state made ready here when `bands` (fragment plan, combiner plan, pool).
+  DrawSetup draw_setup(const ShadingState& st, const ShadingPlan& plan);
+  // Flat-shading copy, clipping, window coordinates: appends the polygon's window
+  // vertices to `out` (a fan) and returns true, or leaves `out` alone and returns
+  // false when nothing of it is left.
+  bool prepare_polygon(std::vector<ClipVertex> poly, std::size_t provoking, const DrawSetup& ds,
+                       std::vector<WindowVertex>& out);
+  // The rows [y0, y1) (relative to the viewport corner) of one triangle, shaded
+  // into `span` and written; `band` >= 0: on a worker, into that band's scratch
+  // and counters (write_fragments without its plan update and probe).
+  void raster_triangle(const DrawSetup& ds, const std::array<const WindowVertex*, 3>& tv, int y0, int y1,
+                       FragmentSpan& span, int band);
+  // One thread (or the probe): prepare and rasterize a polygon at once.
+  void draw_polygon(std::vector<ClipVertex> poly, std::size_t provoking, const DrawSetup& ds);
+  // Threads: prepare a polygon into the batch (flushed when full), and rasterize
+  // the batch in row bands on the pool (or on this thread when it is small).
+  void batch_polygon(std::vector<ClipVertex> poly, std::size_t provoking, const DrawSetup& ds);
+  void flush_batch(const DrawSetup& ds);
+  void clear_batch();
 
 
   // ==== [issue 4b] state ====
@@ -530,7 +562,7 @@ class Context {
 
   // ==== [issue 10] state ====
   bool fast_paths_ = true;
-  std::uint64_t fast_runs_ = 0, split_triangles_ = 0;
+  std::uint64_t fast_runs_ = 0, split_batches_ = 0, split_triangles_ = 0;
   // Scratch of the span path, reused from run to run (sim/draw_span.cpp).
   struct SpanScratch {
     std::vector<std::uint16_t> primary, secondary;
@@ -540,12 +572,25 @@ class Context {
   };
   SpanScratch span_scratch_;
   // Threads: the pool (rebuilt when threads() changes) and per-band scratch.
-  // A triangle whose bounding box covers at least kSplitFragments pixels is split.
+  // A batch whose triangles' bounding boxes (clipped to the window) sum to at
+  // least kSplitFragments pixels is split into bands of rows.
   static constexpr std::int64_t kSplitFragments = 4096;
+  static constexpr std::size_t kBatchTriangles = 2048;  // bounds the batch's memory
   std::shared_ptr<WorkerPool> pool_;
   std::vector<SpanScratch> band_scratch_;
   std::vector<FragmentSpan> band_spans_;
   std::vector<std::uint64_t> band_fast_runs_, band_fragments_;  // summed after each split
+  // The batch: window vertices of its polygons, and its triangles in drawing
+  // order (a fan of each polygon) with the rows [r0, r1) their bounding boxes may
+  // cover; the rows of all of them, and the summed bounding-box area.
+  struct BatchTriangle {
+    std::array<std::uint32_t, 3> v;
+    int r0, r1;
+  };
+  std::vector<WindowVertex> batch_vertices_;
+  std::vector<BatchTriangle> batch_triangles_;
+  int batch_r0_ = 0, batch_r1_ = 0;
+  std::int64_t batch_area_ = 0;
   // A run shaded at once into `span` (fixed profiles); false when the run needs
   // the generic per-fragment path (float profiles, λ needed, the probe inside it).
   bool shade_run_fast(const ShadingState& st, const ShadingPlan& plan, const std::array<const WindowVertex*, 3>& tv,

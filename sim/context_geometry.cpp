@@ -61,8 +61,13 @@ void Context::end() {
   const ShadingState st = shading_state();
   const ShadingPlan plan = shading_plan(st);
   if (on_explain_ && n >= 3) on_explain_(ffsim::explain_shading(st, plan));
+  const DrawSetup ds = draw_setup(st, plan);
+  // One thread: each polygon is drawn at once. Threads: the polygons are prepared
+  // into batches, each rasterized in row bands (sim/draw.cpp, docs/performance.md).
+  if (ds.bands) clear_batch();
   auto draw_polygon = [&](std::vector<ClipVertex> poly, std::size_t provoking) {
-    this->draw_polygon(std::move(poly), provoking, st, plan);
+    if (ds.bands) batch_polygon(std::move(poly), provoking, ds);
+    else this->draw_polygon(std::move(poly), provoking, ds);
   };
   // Provoking vertex for flat shading (GL121 Table 2.9, 0-based here).
   switch (begin_mode_) {
@@ -89,6 +94,7 @@ void Context::end() {
       break;
     default: break;
   }
+  if (ds.bands) flush_batch(ds);
 }
 
 ClipVertex Context::make_vertex(const glm::dvec4& object) const {

@@ -179,36 +179,73 @@ Rgba Context::combine_fragment(const ShadingState& st, const ShadingPlan& plan, 
   return out;
 }
 
-void Context::draw_polygon(std::vector<ClipVertex> poly, std::size_t provoking, const ShadingState& st,
-                           const ShadingPlan& plan) {
-  if (shade_model_ == gl::FLAT) {  // §2.13.7: every vertex takes the provoking vertex's colours
+Context::DrawSetup Context::draw_setup(const ShadingState& st, const ShadingPlan& plan) {
+  DrawSetup ds;
+  ds.st = &st;
+  ds.plan = &plan;
+  ds.flat = shade_model_ == gl::FLAT;
+  ds.shade = shading_active(plan);
+  ds.has_depth = fb_.has_depth();
+  ds.vx = viewport_[0];
+  ds.vy = viewport_[1];
+  ds.hw = viewport_[2] / 2.0;
+  ds.hh = viewport_[3] / 2.0;
+  // Window bounds relative to the viewport corner (pixel ownership, §4.1.1), in
+  // 64 bits: the viewport corner may be any int.
+  auto rel = [](int a, int origin) {
+    return static_cast<int>(std::clamp<std::int64_t>(std::int64_t{a} - origin, -(std::int64_t{1} << 30), std::int64_t{1} << 30));
+  };
+  ds.cx0 = rel(0, ds.vx);
+  ds.cy0 = rel(0, ds.vy);
+  ds.cx1 = rel(fb_.width(), ds.vx);
+  ds.cy1 = rel(fb_.height(), ds.vy);
+  // Threads (docs/performance.md): the polygons of a glEnd are rasterized in bands
+  // of rows shaded concurrently, each band walking every triangle in order. Rows
+  // are disjoint pixels and every per-fragment operation reads and writes only
+  // its own pixel, so each pixel sees the same fragments in the same order as
+  // with one thread. Shared state is made ready here (fragment plan, combiner
+  // plan), then only read; the probe forces one thread (it records in order).
+  ds.bands = threads_ > 1 && !probe_.enabled();
+  if (ds.bands) {
+    update_fragment_plan();
+    if (combiners_.enabled) combiner_plan();
+    if (fb_.format().float_color()) ds.buffers.values = fb_.values().data();
+    else ds.buffers.codes = fb_.codes().data();
+    if (fb_.has_stencil()) ds.buffers.stencil = fb_.stencil().data();
+    if (fb_.has_depth()) ds.buffers.depth = fb_.depth().data();
+    if (!pool_ || pool_->threads() != threads_) pool_ = std::make_shared<WorkerPool>(threads_);
+  }
+  return ds;
+}
+
+bool Context::prepare_polygon(std::vector<ClipVertex> poly, std::size_t provoking, const DrawSetup& ds,
+                              std::vector<WindowVertex>& out) {
+  if (ds.flat) {  // §2.13.7: every vertex takes the provoking vertex's colours
     for (ClipVertex& v : poly) {
       v.color = poly[provoking].color;
       v.secondary = poly[provoking].secondary;
     }
   }
   poly = clip_polygon(std::move(poly));
-  if (poly.size() < 3) return;
+  if (poly.size() < 3) return false;
   for (const ClipVertex& v : poly)
-    if (!(v.position.w > 0)) return;  // only a polygon through the eye point itself: no area
+    if (!(v.position.w > 0)) return false;  // only a polygon through the eye point itself: no area
 
-  const Arithmetic arith = profile_.arithmetic;
   const int S = profile_.subpixel_bits;
-  const int vx = viewport_[0], vy = viewport_[1];
-  const double hw = viewport_[2] / 2.0, hh = viewport_[3] / 2.0;
-  const bool has_depth = fb_.has_depth();
-  std::vector<WindowVertex> wv(poly.size());
+  const double hw = ds.hw, hh = ds.hh;
+  const std::size_t base = out.size();
+  out.resize(base + poly.size());
   for (std::size_t i = 0; i < poly.size(); ++i) {
     const ClipVertex& c = poly[i];
-    WindowVertex& w = wv[i];
+    WindowVertex& w = out[base + i];
     const double iw = 1.0 / c.position.w;
     // §2.10.1 viewport transformation, relative to the viewport corner (vx, vy).
     w.p.x = snap_coordinate((c.position.x * iw + 1) * hw, S);
     w.p.y = snap_coordinate((c.position.y * iw + 1) * hh, S);
     const double zw = depth_near_ + (depth_far_ - depth_near_) * ((c.position.z * iw + 1) / 2);
-    if (has_depth) w.depth = unorm_from_double(zw, fb_.format().depth_bits);
+    if (ds.has_depth) w.depth = unorm_from_double(zw, fb_.format().depth_bits);
     // Vertex colours into the fragment colour format (§1.2 codes, or binary32/64).
-    const Rgba pc = rgba_from_values(c.color, st.color), sc = rgba_from_values(c.secondary, st.color);
+    const Rgba pc = rgba_from_values(c.color, ds.st->color), sc = rgba_from_values(c.secondary, ds.st->color);
     w.color_code = pc.code;
     w.secondary_code = sc.code;
     w.color = pc.value;
@@ -216,168 +253,200 @@ void Context::draw_polygon(std::vector<ClipVertex> poly, std::size_t provoking, 
     for (int u = 0; u < kMaxTextureUnits; ++u)
       w.tcw[u] = {c.texcoord[u].x * iw, c.texcoord[u].y * iw, c.texcoord[u].w * iw};
   }
+  return true;
+}
 
-  const bool flat = shade_model_ == gl::FLAT;
-  const bool shade = shading_active(plan);
-  // Window bounds relative to the viewport corner (pixel ownership, §4.1.1), in
-  // 64 bits: the viewport corner may be any int.
-  auto rel = [](int a, int origin) {
-    return static_cast<int>(std::clamp<std::int64_t>(std::int64_t{a} - origin, -(std::int64_t{1} << 30), std::int64_t{1} << 30));
-  };
-  const int cx0 = rel(0, vx), cy0 = rel(0, vy), cx1 = rel(fb_.width(), vx), cy1 = rel(fb_.height(), vy);
-  // Threads (docs/performance.md): the rows of a large triangle are split into
-  // bands shaded concurrently. Rows are disjoint pixels and every per-fragment
-  // operation reads and writes only its own pixel, so each pixel sees the same
-  // fragments in the same order as with one thread. Shared state is made ready
-  // first (fragment plan, combiner plan), then only read; the probe forces one
-  // thread (it records in order).
-  const bool may_split = threads_ > 1 && !probe_.enabled();
-  FragmentBuffers buffers;
-  if (may_split) {
-    update_fragment_plan();
-    if (combiners_.enabled) combiner_plan();
-    if (fb_.format().float_color()) buffers.values = fb_.values().data();
-    else buffers.codes = fb_.codes().data();
-    if (fb_.has_stencil()) buffers.stencil = fb_.stencil().data();
-    if (fb_.has_depth()) buffers.depth = fb_.depth().data();
-    if (!pool_ || pool_->threads() != threads_) pool_ = std::make_shared<WorkerPool>(threads_);
-  }
-  FragmentSpan span;  // reused from run to run
-  for (std::size_t i = 1; i + 1 < wv.size(); ++i) {
-    const std::array<const WindowVertex*, 3> tv{&wv[0], &wv[i], &wv[i + 1]};
-    // One run into `span`; `band` >= 0: on a worker (no probe, plans ready).
-    auto shade_run = [&](const TriangleCoverage& cov, const CoverageRun& run, FragmentSpan& span, int band) {
-      const std::int64_t A = cov.area;
-      const int n = static_cast<int>(run.weight.size());
-      span.y = run.y + vy;
-      span.x0 = run.x0 + vx;
-      span.count = n;
-      if (arith == Arithmetic::Fixed) span.codes.resize(4 * static_cast<std::size_t>(n));
-      else span.values.resize(4 * static_cast<std::size_t>(n));
-      if (has_depth) span.depth.resize(static_cast<std::size_t>(n));
-      // The span path (sim/draw_span.cpp), or every fragment on its own below.
-      auto write = [&] {
-        if (band < 0) write_fragments(span);
-        else {  // write_fragments without the plan update and the probe (both done or off)
-          band_fragments_[static_cast<std::size_t>(band)] += static_cast<std::uint64_t>(span.count);
-          run_fragment_plan(*fragment_current_plan_, fragment_current_constants_, span, buffers, fb_.width());
-        }
-      };
-      if (fast_paths_ && shade_run_fast(st, plan, tv, cov, run, flat, shade, span,
-                                        band < 0 ? span_scratch_ : band_scratch_[static_cast<std::size_t>(band)])) {
-        if (band < 0) ++fast_runs_;
-        else ++band_fast_runs_[static_cast<std::size_t>(band)];
-        write();
-        return;
+void Context::raster_triangle(const DrawSetup& ds, const std::array<const WindowVertex*, 3>& tv, int y0, int y1,
+                              FragmentSpan& span, int band) {
+  const ShadingState& st = *ds.st;
+  const ShadingPlan& plan = *ds.plan;
+  const Arithmetic arith = profile_.arithmetic;
+  const int vx = ds.vx, vy = ds.vy;
+  const bool has_depth = ds.has_depth, flat = ds.flat, shade = ds.shade;
+  // One run into `span`; `band` >= 0: on a worker (no probe, plans ready).
+  auto shade_run = [&](const TriangleCoverage& cov, const CoverageRun& run) {
+    const std::int64_t A = cov.area;
+    const int n = static_cast<int>(run.weight.size());
+    span.y = run.y + vy;
+    span.x0 = run.x0 + vx;
+    span.count = n;
+    if (arith == Arithmetic::Fixed) span.codes.resize(4 * static_cast<std::size_t>(n));
+    else span.values.resize(4 * static_cast<std::size_t>(n));
+    if (has_depth) span.depth.resize(static_cast<std::size_t>(n));
+    // The span path (sim/draw_span.cpp), or every fragment on its own below.
+    auto write = [&] {
+      if (band < 0) write_fragments(span);
+      else {  // write_fragments without the plan update and the probe (both done or off)
+        band_fragments_[static_cast<std::size_t>(band)] += static_cast<std::uint64_t>(span.count);
+        run_fragment_plan(*fragment_current_plan_, fragment_current_constants_, span, ds.buffers, fb_.width());
       }
-      for (int f = 0; f < n; ++f) {
-        const auto& w = run.weight[static_cast<std::size_t>(f)];
-        if (has_depth) span.depth[f] = interpolate_code(w, A, tv[0]->depth, tv[1]->depth, tv[2]->depth);
-        Rgba primary, secondary;
-        for (int k = 0; k < 4; ++k) {
-          if (arith == Arithmetic::Fixed) {
-            primary.code[k] = flat ? tv[0]->color_code[k]
-                                   : interpolate_code(w, A, tv[0]->color_code[k], tv[1]->color_code[k], tv[2]->color_code[k]);
-            secondary.code[k] = flat ? tv[0]->secondary_code[k]
-                                     : interpolate_code(w, A, tv[0]->secondary_code[k], tv[1]->secondary_code[k],
-                                                        tv[2]->secondary_code[k]);
-          } else {
-            const double a = static_cast<double>(A);
-            primary.value[k] = flat ? tv[0]->color[k]
-                                    : to_color_value((static_cast<double>(w[0]) * tv[0]->color[k] +
-                                                      static_cast<double>(w[1]) * tv[1]->color[k] +
-                                                      static_cast<double>(w[2]) * tv[2]->color[k]) / a, arith);
-            secondary.value[k] = flat ? tv[0]->secondary[k]
-                                      : to_color_value((static_cast<double>(w[0]) * tv[0]->secondary[k] +
-                                                        static_cast<double>(w[1]) * tv[1]->secondary[k] +
-                                                        static_cast<double>(w[2]) * tv[2]->secondary[k]) / a, arith);
-          }
-        }
-        Rgba out = primary;
-        if (shade) {
-          UnitTexCoords tc{};
-          for (int u = 0; u < kMaxTextureUnits; ++u) {
-            if (!plan.sample[u]) continue;
-            const double a = static_cast<double>(A);
-            std::array<double, 3> v{}, dx{}, dy{};  // s/w, t/w, q/w and their x, y derivatives
-            for (int j = 0; j < 3; ++j) {
-              for (int k = 0; k < 3; ++k) {
-                v[j] += static_cast<double>(w[k]) * tv[k]->tcw[u][j];
-                dx[j] += static_cast<double>(cov.dwdx[k]) * tv[k]->tcw[u][j];
-                dy[j] += static_cast<double>(cov.dwdy[k]) * tv[k]->tcw[u][j];
-              }
-              v[j] /= a;
-              dx[j] /= a;
-              dy[j] /= a;
-            }
-            const double q = v[2];
-            tc[u].s = v[0] / q;
-            tc[u].t = v[1] / q;
-            const TextureObject& tex = *st.units[u].texture;
-            if (!needs_lod(tex.params)) continue;
-            // ρ of GL121 eq. 3.15 from the exact derivatives of s = N/D at the centre.
-            const TextureImage& base = tex.levels[static_cast<std::size_t>(tex.params.base_level)];
-            const double ws = level_width(base), hs = level_height(base, st.units[u].dims);
-            const double ux = (dx[0] * q - v[0] * dx[2]) / (q * q) * ws, uy = (dy[0] * q - v[0] * dy[2]) / (q * q) * ws;
-            const double vxd = (dx[1] * q - v[1] * dx[2]) / (q * q) * hs, vyd = (dy[1] * q - v[1] * dy[2]) / (q * q) * hs;
-            const bool one_d = st.units[u].dims == 1;
-            if (arith == Arithmetic::Float64) {
-              const double rx = std::sqrt(ux * ux + (one_d ? 0.0 : vxd * vxd));
-              const double ry = std::sqrt(uy * uy + (one_d ? 0.0 : vyd * vyd));
-              tc[u].lambda = std::log2(std::max(rx, ry));
-            } else {
-              const auto fux = static_cast<float>(ux), fuy = static_cast<float>(uy);
-              const auto fvx = one_d ? 0.0f : static_cast<float>(vxd), fvy = one_d ? 0.0f : static_cast<float>(vyd);
-              const float rx = std::sqrt(fux * fux + fvx * fvx), ry = std::sqrt(fuy * fuy + fvy * fvy);
-              tc[u].lambda = static_cast<double>(std::log2(std::max(rx, ry)));
-            }
-          }
-          const bool probed = probe_.hits(span.x0 + f, span.y);
-          std::string note;
-          if (probed) shade_probe_ = &note;
-          out = shade_fragment(st, plan, primary, secondary, tc);
-          if (probed) shade_probe_ = nullptr;  // (workers never probe: no shared write)
-          if (probed) probe_.record("shading", "primary " + describe_rgba(primary, st.color) + note + "\n    fragment colour " +
-                                                   describe_rgba(out, st.color));
-        }
-        for (int k = 0; k < 4; ++k) {
-          if (arith == Arithmetic::Fixed) span.codes[4 * static_cast<std::size_t>(f) + k] = static_cast<std::uint16_t>(out.code[k]);
-          else span.values[4 * static_cast<std::size_t>(f) + k] = out.value[k];
-        }
-      }
-      write();
     };
-    const std::array<SnappedVertex, 3> sv{tv[0]->p, tv[1]->p, tv[2]->p};
-    if (may_split) {
-      // Rows the triangle's bounding box may cover, clipped to the window.
-      const std::int64_t lo = std::min({sv[0].y, sv[1].y, sv[2].y}) >> S, hi = (std::max({sv[0].y, sv[1].y, sv[2].y}) >> S) + 1;
-      const std::int64_t wlo = std::min({sv[0].x, sv[1].x, sv[2].x}) >> S, whi = (std::max({sv[0].x, sv[1].x, sv[2].x}) >> S) + 1;
-      const int r0 = static_cast<int>(std::max<std::int64_t>(lo, cy0)), r1 = static_cast<int>(std::min<std::int64_t>(hi + 1, cy1));
-      const std::int64_t area = std::int64_t{std::max(0, r1 - r0)} * std::clamp<std::int64_t>(whi - wlo, 0, cx1 - cx0);
-      if (area >= kSplitFragments && r1 - r0 >= 4 * threads_) {
-        const int bands = 4 * threads_;  // more bands than threads: a triangle's rows differ in length
-        if (band_scratch_.size() < static_cast<std::size_t>(bands)) {
-          band_scratch_.resize(static_cast<std::size_t>(bands));
-          band_spans_.resize(static_cast<std::size_t>(bands));
-          band_fast_runs_.resize(static_cast<std::size_t>(bands));
-          band_fragments_.resize(static_cast<std::size_t>(bands));
+    if (fast_paths_ && shade_run_fast(st, plan, tv, cov, run, flat, shade, span,
+                                      band < 0 ? span_scratch_ : band_scratch_[static_cast<std::size_t>(band)])) {
+      if (band < 0) ++fast_runs_;
+      else ++band_fast_runs_[static_cast<std::size_t>(band)];
+      write();
+      return;
+    }
+    for (int f = 0; f < n; ++f) {
+      const auto& w = run.weight[static_cast<std::size_t>(f)];
+      if (has_depth) span.depth[f] = interpolate_code(w, A, tv[0]->depth, tv[1]->depth, tv[2]->depth);
+      Rgba primary, secondary;
+      for (int k = 0; k < 4; ++k) {
+        if (arith == Arithmetic::Fixed) {
+          primary.code[k] = flat ? tv[0]->color_code[k]
+                                 : interpolate_code(w, A, tv[0]->color_code[k], tv[1]->color_code[k], tv[2]->color_code[k]);
+          secondary.code[k] = flat ? tv[0]->secondary_code[k]
+                                   : interpolate_code(w, A, tv[0]->secondary_code[k], tv[1]->secondary_code[k],
+                                                      tv[2]->secondary_code[k]);
+        } else {
+          const double a = static_cast<double>(A);
+          primary.value[k] = flat ? tv[0]->color[k]
+                                  : to_color_value((static_cast<double>(w[0]) * tv[0]->color[k] +
+                                                    static_cast<double>(w[1]) * tv[1]->color[k] +
+                                                    static_cast<double>(w[2]) * tv[2]->color[k]) / a, arith);
+          secondary.value[k] = flat ? tv[0]->secondary[k]
+                                    : to_color_value((static_cast<double>(w[0]) * tv[0]->secondary[k] +
+                                                      static_cast<double>(w[1]) * tv[1]->secondary[k] +
+                                                      static_cast<double>(w[2]) * tv[2]->secondary[k]) / a, arith);
         }
-        pool_->run(bands, [&](int b) {
-          const int y0 = r0 + static_cast<int>(std::int64_t{r1 - r0} * b / bands);
-          const int y1 = r0 + static_cast<int>(std::int64_t{r1 - r0} * (b + 1) / bands);
-          FragmentSpan& bs = band_spans_[static_cast<std::size_t>(b)];
-          rasterize_triangle(sv, S, cx0, y0, cx1, y1,
-                             [&](const TriangleCoverage& cov, const CoverageRun& run) { shade_run(cov, run, bs, b); });
-        });
-        for (std::uint64_t& k : band_fast_runs_) fast_runs_ += std::exchange(k, 0);
-        for (std::uint64_t& k : band_fragments_) fragments_written_ += std::exchange(k, 0);
-        ++split_triangles_;
-        continue;
+      }
+      Rgba out = primary;
+      if (shade) {
+        UnitTexCoords tc{};
+        for (int u = 0; u < kMaxTextureUnits; ++u) {
+          if (!plan.sample[u]) continue;
+          const double a = static_cast<double>(A);
+          std::array<double, 3> v{}, dx{}, dy{};  // s/w, t/w, q/w and their x, y derivatives
+          for (int j = 0; j < 3; ++j) {
+            for (int k = 0; k < 3; ++k) {
+              v[j] += static_cast<double>(w[k]) * tv[k]->tcw[u][j];
+              dx[j] += static_cast<double>(cov.dwdx[k]) * tv[k]->tcw[u][j];
+              dy[j] += static_cast<double>(cov.dwdy[k]) * tv[k]->tcw[u][j];
+            }
+            v[j] /= a;
+            dx[j] /= a;
+            dy[j] /= a;
+          }
+          const double q = v[2];
+          tc[u].s = v[0] / q;
+          tc[u].t = v[1] / q;
+          const TextureObject& tex = *st.units[u].texture;
+          if (!needs_lod(tex.params)) continue;
+          // ρ of GL121 eq. 3.15 from the exact derivatives of s = N/D at the centre.
+          const TextureImage& base = tex.levels[static_cast<std::size_t>(tex.params.base_level)];
+          const double ws = level_width(base), hs = level_height(base, st.units[u].dims);
+          const double ux = (dx[0] * q - v[0] * dx[2]) / (q * q) * ws, uy = (dy[0] * q - v[0] * dy[2]) / (q * q) * ws;
+          const double vxd = (dx[1] * q - v[1] * dx[2]) / (q * q) * hs, vyd = (dy[1] * q - v[1] * dy[2]) / (q * q) * hs;
+          const bool one_d = st.units[u].dims == 1;
+          if (arith == Arithmetic::Float64) {
+            const double rx = std::sqrt(ux * ux + (one_d ? 0.0 : vxd * vxd));
+            const double ry = std::sqrt(uy * uy + (one_d ? 0.0 : vyd * vyd));
+            tc[u].lambda = std::log2(std::max(rx, ry));
+          } else {
+            const auto fux = static_cast<float>(ux), fuy = static_cast<float>(uy);
+            const auto fvx = one_d ? 0.0f : static_cast<float>(vxd), fvy = one_d ? 0.0f : static_cast<float>(vyd);
+            const float rx = std::sqrt(fux * fux + fvx * fvx), ry = std::sqrt(fuy * fuy + fvy * fvy);
+            tc[u].lambda = static_cast<double>(std::log2(std::max(rx, ry)));
+          }
+        }
+        const bool probed = probe_.hits(span.x0 + f, span.y);
+        std::string note;
+        if (probed) shade_probe_ = &note;
+        out = shade_fragment(st, plan, primary, secondary, tc);
+        if (probed) shade_probe_ = nullptr;  // (workers never probe: no shared write)
+        if (probed) probe_.record("shading", "primary " + describe_rgba(primary, st.color) + note + "\n    fragment colour " +
+                                                 describe_rgba(out, st.color));
+      }
+      for (int k = 0; k < 4; ++k) {
+        if (arith == Arithmetic::Fixed) span.codes[4 * static_cast<std::size_t>(f) + k] = static_cast<std::uint16_t>(out.code[k]);
+        else span.values[4 * static_cast<std::size_t>(f) + k] = out.value[k];
       }
     }
-    rasterize_triangle(sv, S, cx0, cy0, cx1, cy1,
-                       [&](const TriangleCoverage& cov, const CoverageRun& run) { shade_run(cov, run, span, -1); });
+    write();
+  };
+  const std::array<SnappedVertex, 3> sv{tv[0]->p, tv[1]->p, tv[2]->p};
+  rasterize_triangle(sv, profile_.subpixel_bits, ds.cx0, y0, ds.cx1, y1,  // (one capture: no allocation)
+                     [&shade_run](const TriangleCoverage& cov, const CoverageRun& run) { shade_run(cov, run); });
+}
+
+void Context::draw_polygon(std::vector<ClipVertex> poly, std::size_t provoking, const DrawSetup& ds) {
+  std::vector<WindowVertex> wv;
+  if (!prepare_polygon(std::move(poly), provoking, ds, wv)) return;
+  FragmentSpan span;  // reused from run to run
+  for (std::size_t i = 1; i + 1 < wv.size(); ++i) raster_triangle(ds, {&wv[0], &wv[i], &wv[i + 1]}, ds.cy0, ds.cy1, span, -1);
+}
+
+void Context::clear_batch() {
+  batch_vertices_.clear();
+  batch_triangles_.clear();
+  batch_r0_ = batch_r1_ = 0;
+  batch_area_ = 0;
+}
+
+void Context::batch_polygon(std::vector<ClipVertex> poly, std::size_t provoking, const DrawSetup& ds) {
+  const std::size_t base = batch_vertices_.size();
+  if (!prepare_polygon(std::move(poly), provoking, ds, batch_vertices_)) return;
+  const int S = profile_.subpixel_bits;
+  for (std::size_t i = base + 1; i + 1 < batch_vertices_.size(); ++i) {
+    const SnappedVertex &a = batch_vertices_[base].p, &b = batch_vertices_[i].p, &c = batch_vertices_[i + 1].p;
+    // Rows and columns the triangle's bounding box may cover (one more each way
+    // than the snapped extremes), clipped to the window. A triangle that misses
+    // the window produces no fragment and is left out.
+    const std::int64_t lo = std::min({a.y, b.y, c.y}) >> S, hi = (std::max({a.y, b.y, c.y}) >> S) + 2;
+    const std::int64_t le = std::min({a.x, b.x, c.x}) >> S, ri = (std::max({a.x, b.x, c.x}) >> S) + 2;
+    const int r0 = static_cast<int>(std::max<std::int64_t>(lo, ds.cy0)), r1 = static_cast<int>(std::min<std::int64_t>(hi, ds.cy1));
+    const int c0 = static_cast<int>(std::max<std::int64_t>(le, ds.cx0)), c1 = static_cast<int>(std::min<std::int64_t>(ri, ds.cx1));
+    if (r1 <= r0 || c1 <= c0) continue;
+    batch_r0_ = batch_triangles_.empty() ? r0 : std::min(batch_r0_, r0);
+    batch_r1_ = batch_triangles_.empty() ? r1 : std::max(batch_r1_, r1);
+    batch_area_ += std::int64_t{r1 - r0} * (c1 - c0);
+    batch_triangles_.push_back({{static_cast<std::uint32_t>(base), static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(i + 1)}, r0, r1});
   }
+  if (batch_triangles_.size() >= kBatchTriangles) flush_batch(ds);
+}
+
+void Context::flush_batch(const DrawSetup& ds) {
+  // Emptied however this ends (a band may throw: WorkerPool::run rethrows once
+  // every band has ended); the band counters are summed likewise, so the counts
+  // include the fragments written before the exception.
+  struct Done {
+    Context& c;
+    ~Done() {
+      c.clear_batch();
+      for (std::uint64_t& k : c.band_fast_runs_) c.fast_runs_ += std::exchange(k, 0);
+      for (std::uint64_t& k : c.band_fragments_) c.fragments_written_ += std::exchange(k, 0);
+    }
+  } done{*this};
+  if (batch_triangles_.empty()) return;
+  auto tri = [&](const BatchTriangle& t) {
+    return std::array<const WindowVertex*, 3>{&batch_vertices_[t.v[0]], &batch_vertices_[t.v[1]], &batch_vertices_[t.v[2]]};
+  };
+  // More bands than threads (dynamic scheduling balances rows of different cost),
+  // at least one row each.
+  const int rows = batch_r1_ - batch_r0_;
+  const int bands = std::min(4 * threads_, rows);
+  if (batch_area_ < kSplitFragments || bands < 2) {  // not worth the pool: in order on this thread
+    FragmentSpan span;
+    for (const BatchTriangle& t : batch_triangles_) raster_triangle(ds, tri(t), ds.cy0, ds.cy1, span, -1);
+    return;
+  }
+  if (band_scratch_.size() < static_cast<std::size_t>(bands)) {
+    band_scratch_.resize(static_cast<std::size_t>(bands));
+    band_spans_.resize(static_cast<std::size_t>(bands));
+    band_fast_runs_.resize(static_cast<std::size_t>(bands));
+    band_fragments_.resize(static_cast<std::size_t>(bands));
+  }
+  ++split_batches_;
+  split_triangles_ += batch_triangles_.size();
+  const int r0 = batch_r0_;
+  pool_->run(bands, [&](int b) {
+    const int y0 = r0 + static_cast<int>(std::int64_t{rows} * b / bands);
+    const int y1 = r0 + static_cast<int>(std::int64_t{rows} * (b + 1) / bands);
+    FragmentSpan& bs = band_spans_[static_cast<std::size_t>(b)];
+    for (const BatchTriangle& t : batch_triangles_)  // every triangle, in order; only this band's rows
+      if (t.r0 < y1 && t.r1 > y0) raster_triangle(ds, tri(t), y0, y1, bs, b);
+  });
 }
 
 }  // namespace ffsim

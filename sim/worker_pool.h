@@ -1,7 +1,7 @@
 // A small persistent pool of worker threads (docs/performance.md "Threads"):
 // run(n, fn) calls fn(0) .. fn(n − 1), spread over the workers and the calling
 // thread, and returns when all have finished. The draw splits the rows of a
-// large triangle into bands, one task each; tasks must touch disjoint data.
+// glEnd's polygons into bands, one task each; tasks must touch disjoint data.
 #pragma once
 #include <condition_variable>
 #include <exception>

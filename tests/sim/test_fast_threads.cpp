@@ -1,15 +1,148 @@
-// Row bands on worker threads (sim/draw.cpp, sim/worker_pool.*): random scenes
-// with large triangles drawn with 1 and with 2 or 3 threads, span path on and
-// off, must leave identical buffers in every profile; the split must happen.
+// Row bands on worker threads (sim/draw.cpp, sim/worker_pool.*): the polygons of
+// a glEnd are rasterized in bands of rows, every band walking all of them in
+// order. Random scenes with large triangles, meshes of small triangles, and
+// overlapping triangles whose order matters, drawn with 1 and with 2, 3 or 4
+// threads (span path on and off), must leave identical buffers in every profile;
+// the split must happen. The terrain trace likewise.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <atomic>
+#include <sstream>
 
 #include "fast_scene.h"
+#include "sim/trace/executor.h"
+#include "sim/trace/trace.h"
 #include "sim/worker_pool.h"
 
 using namespace ffsim;
 using namespace ffsim::test;
+
+namespace {
+
+// A 10 x 6 grid of 16 x 20-pixel cells over a 160 x 120 window (jittered, per
+// vertex colours, texture coordinates and depth): 120 triangles, each far below
+// kSplitFragments, drawn twice over: as triangle strips (one glEnd per row of
+// cells, 20 triangles) and as one GL_TRIANGLES batch of all 120. Random
+// textures, sometimes combiners, random fragment operations, then the depth
+// test and blending forced on for the second pass.
+constexpr int kMeshW = 160, kMeshH = 120, kCellsX = 10, kCellsY = 6;
+
+void draw_mesh_scene(Context& c, std::uint32_t seed) {
+  SceneRng r(seed);
+  c.clearColor(r.d(0, 1), r.d(0, 1), r.d(0, 1), r.d(0, 1));
+  c.clearStencil(r.i(0, 255));
+  c.clearDepth(r.d(0.5, 1));
+  c.clear(gl::COLOR_BUFFER_BIT | gl::STENCIL_BUFFER_BIT | gl::DEPTH_BUFFER_BIT);
+  random_projection(c, r);
+  struct V {
+    double x, y, z;
+    std::array<double, 4> color, secondary;
+    std::array<double, 4> tc0, tc1;
+  };
+  std::vector<V> grid;
+  for (int j = 0; j <= kCellsY; ++j)
+    for (int i = 0; i <= kCellsX; ++i) {
+      V v;
+      const double jx = i == 0 || i == kCellsX ? 0 : r.d(-5, 5), jy = j == 0 || j == kCellsY ? 0 : r.d(-6, 6);
+      v.x = i * (kMeshW / kCellsX) + jx;
+      v.y = j * (kMeshH / kCellsY) + jy;
+      v.z = r.d(-0.3, 0.3);
+      v.color = {r.d(0, 1), r.d(0, 1), r.d(0, 1), r.d(0, 1)};
+      v.secondary = {r.d(0, 1), r.d(0, 1), r.d(0, 1), 0};
+      v.tc0 = {v.x / kMeshW * 2, v.y / kMeshH * 2, 0, 1};
+      v.tc1 = {r.d(-1, 2), r.d(-1, 2), 0, r.b(80) ? 1.0 : r.d(0.5, 2)};
+      grid.push_back(v);
+    }
+  auto vertex = [&](int i, int j, double dz) {
+    const V& v = grid[static_cast<std::size_t>(j * (kCellsX + 1) + i)];
+    c.color4(v.color[0], v.color[1], v.color[2], v.color[3]);
+    c.secondaryColor3(v.secondary[0], v.secondary[1], v.secondary[2]);
+    c.multiTexCoord4(gl::TEXTURE0, v.tc0[0], v.tc0[1], v.tc0[2], v.tc0[3]);
+    c.multiTexCoord4(gl::TEXTURE1, v.tc1[0], v.tc1[1], v.tc1[2], v.tc1[3]);
+    c.vertex3(v.x, v.y, v.z + dz);
+  };
+  for (int pass = 0; pass < 2; ++pass) {
+    for (int u = 0; u < 2; ++u) {
+      if (r.b(75)) random_texture(c, r, u, static_cast<std::uint32_t>(1 + u + 2 * pass));
+      else {
+        c.activeTexture(gl::TEXTURE0 + static_cast<GLenum>(u));
+        c.disable(gl::TEXTURE_2D);
+        c.activeTexture(gl::TEXTURE0);
+      }
+    }
+    if (r.b(40)) random_combiners(c, r);
+    else c.disable(gl::REGISTER_COMBINERS_NV);
+    if (r.b(30)) c.enable(gl::COLOR_SUM); else c.disable(gl::COLOR_SUM);
+    c.shadeModel(r.b(80) ? gl::SMOOTH : gl::FLAT);
+    random_fragment_ops(c, r);
+    if (pass == 1) {
+      c.enable(gl::DEPTH_TEST);
+      c.depthFunc(gl::LEQUAL);
+      c.enable(gl::BLEND);
+      c.blendFunc(gl::SRC_ALPHA, gl::ONE_MINUS_SRC_ALPHA);
+      c.blendEquation(gl::FUNC_ADD);
+    }
+    const double dz = pass == 0 ? 0 : r.d(-0.2, 0.2);
+    if (pass == 0)
+      for (int j = 0; j < kCellsY; ++j) {
+        c.begin(gl::TRIANGLE_STRIP);
+        for (int i = 0; i <= kCellsX; ++i) {
+          vertex(i, j + 1, dz);
+          vertex(i, j, dz);
+        }
+        c.end();
+      }
+    else {
+      c.begin(gl::TRIANGLES);
+      for (int j = 0; j < kCellsY; ++j)
+        for (int i = 0; i < kCellsX; ++i) {
+          vertex(i, j, dz), vertex(i + 1, j, dz), vertex(i + 1, j + 1, dz);
+          vertex(i, j, dz), vertex(i + 1, j + 1, dz), vertex(i, j + 1, dz);
+        }
+      c.end();
+    }
+  }
+}
+
+// 300 small triangles (sides up to 24 pixels) piled on the middle of a 128 x 96
+// window in one GL_TRIANGLES batch, blended (SRC_ALPHA, ONE_MINUS_SRC_ALPHA) with
+// FUNC_ADD and counted by stencil INCR: each pixel's result depends on the order
+// of its fragments. `reverse` draws them in the opposite order.
+void draw_overlap_scene(Context& c, std::uint32_t seed, bool reverse) {
+  SceneRng r(seed);
+  ortho_window(c);
+  c.clearColor(0.2, 0.3, 0.4, 0.5);
+  c.clearStencil(0);
+  c.clear(gl::COLOR_BUFFER_BIT | gl::STENCIL_BUFFER_BIT | gl::DEPTH_BUFFER_BIT);
+  c.enable(gl::BLEND);
+  c.blendFunc(gl::SRC_ALPHA, gl::ONE_MINUS_SRC_ALPHA);
+  c.blendEquation(gl::FUNC_ADD);
+  c.enable(gl::STENCIL_TEST);
+  c.stencilFunc(gl::ALWAYS, 0, 0xFF);
+  c.stencilOp(gl::KEEP, gl::KEEP, gl::INCR);
+  struct V {
+    double x, y;
+    std::array<double, 4> color;
+  };
+  std::vector<V> v;
+  for (int k = 0; k < 300; ++k) {
+    const double cx = r.d(40, 88), cy = r.d(28, 68);
+    for (int j = 0; j < 3; ++j)
+      v.push_back({cx + r.d(-12, 12), cy + r.d(-12, 12), {r.d(0, 1), r.d(0, 1), r.d(0, 1), r.d(0.2, 0.9)}});
+  }
+  if (reverse)
+    for (std::size_t k = 0; k < v.size() / 2; k += 3)  // whole triangles, each kept as it is
+      for (std::size_t j = 0; j < 3; ++j) std::swap(v[k + j], v[v.size() - 3 - k + j]);
+  c.begin(gl::TRIANGLES);
+  for (const V& p : v) {
+    c.color4(p.color[0], p.color[1], p.color[2], p.color[3]);
+    c.vertex2(p.x, p.y);
+  }
+  c.end();
+}
+
+}  // namespace
 
 TEST_CASE("fast threads: row bands on 2 and 3 threads == one thread, random scenes, all profiles") {
   std::uint64_t splits = 0;
@@ -45,6 +178,8 @@ TEST_CASE("fast threads: the probe keeps one thread") {
   ctx.probe().set_target(5, 5);
   draw_random_scene(ctx, 301);
   CHECK(ctx.split_triangles() == 0);
+  draw_mesh_scene(ctx, 700);  // glEnd batches worth splitting
+  CHECK(ctx.split_batches() == 0);
 }
 
 TEST_CASE("fast threads: the pool runs every task once and rethrows a task's exception") {
@@ -58,4 +193,93 @@ TEST_CASE("fast threads: the pool runs every task once and rethrows a task's exc
   int sum = 0;
   pool.run(1, [&](int) { sum = 1; });  // usable after an exception
   CHECK(sum == 1);
+}
+
+TEST_CASE("fast threads: a mesh of small triangles is split by rows as whole batches, identical at 1 to 4 threads") {
+  std::uint64_t batches = 0;
+  for (const char* profile : kFastProfiles)
+#ifdef FFSIM_SANITIZE
+    for (std::uint32_t seed = 700; seed < 702; ++seed) {
+#else
+    for (std::uint32_t seed = 700; seed < 706; ++seed) {
+#endif
+      Context one(profile_named(profile), kMeshW, kMeshH);
+      draw_mesh_scene(one, seed);
+      CHECK(one.split_batches() == 0);
+      for (int threads : {2, 3, 4})
+        for (bool fast : {true, false}) {
+          if (!fast && threads != 3) continue;  // the per-fragment path once is enough
+          Context many(profile_named(profile), kMeshW, kMeshH);
+          many.set_threads(threads);
+          many.set_fast_paths(fast);
+          draw_mesh_scene(many, seed);
+          INFO("profile ", std::string(profile), " seed ", seed, " threads ", threads, " fast ", fast);
+          REQUIRE(buffer_hashes(many) == buffer_hashes(one));
+          CHECK(many.fragments_written() == one.fragments_written());
+          // Every glEnd of the scene is worth splitting: 6 strips and one batch of
+          // all cells (the view volume may clip a few cells away, or cut some into
+          // polygons of more triangles).
+          CHECK(many.split_batches() == 7);
+          CHECK(many.split_triangles() > kCellsX * kCellsY * 2);
+          batches += many.split_batches();
+        }
+    }
+  CHECK(batches > 0);
+}
+
+TEST_CASE("fast threads: overlapping triangles of one batch keep their order in every pixel at 1 to 4 threads") {
+  for (const char* profile : {"geforce256", "float32"})
+    for (std::uint32_t seed = 40; seed < 43; ++seed) {
+      INFO("profile ", std::string(profile), " seed ", seed);
+      Context one(profile_named(profile), 128, 96);
+      draw_overlap_scene(one, seed, false);
+      Context reversed(profile_named(profile), 128, 96);
+      draw_overlap_scene(reversed, seed, true);
+      // The order shows: the test would see a band that reordered fragments.
+      REQUIRE(buffer_hashes(reversed) != buffer_hashes(one));
+      for (int threads : {2, 3, 4}) {
+        Context many(profile_named(profile), 128, 96);
+        many.set_threads(threads);
+        draw_overlap_scene(many, seed, false);
+        INFO("threads ", threads);
+        CHECK(buffer_hashes(many) == buffer_hashes(one));
+        CHECK(many.fragments_written() == one.fragments_written());
+        CHECK(many.split_batches() == 1);
+      }
+    }
+}
+
+TEST_CASE("fast threads: the terrain trace is identical at 1 and 2 threads and its strips are split") {
+  // kautz-geforce-aa's terrain (scene 1): 30 triangle strips of 60 small
+  // triangles per pass, combiners, blending, depth test.
+  trace::LoadOptions lo;
+#ifdef FFSIM_SANITIZE
+  lo.sets = {{"scene", "1"}, {"tw", "256"}, {"th", "192"}, {"rays", "16"}};
+#else
+  lo.sets = {{"scene", "1"}, {"tw", "320"}, {"th", "240"}, {"rays", "16"}};
+#endif
+  const trace::Program prog = trace::load_trace_file(std::string(FFSIM_SOURCE_DIR) + "/traces/kautz-geforce-aa.trace", lo);
+  std::string hashes[2];
+  std::uint64_t fragments[2] = {0, 0}, batches[2] = {0, 0};
+  for (int threads : {1, 2}) {
+    Context ctx(prog.profile, prog.width, prog.height);
+    trace::RunOptions ro;
+    ro.threads = threads;
+    std::ostringstream sink;
+    const trace::RunResult r = trace::run_program_on(ctx, prog, ro, sink);
+    REQUIRE(r.ok);
+    CHECK(r.gl_errors.empty());
+    CHECK_FALSE(r.hashes.empty());
+    std::string& h = hashes[threads - 1];
+    for (const auto& l : r.hashes) h.append(l.hex).append(" ");
+    for (const auto& [b, v] : r.final_hashes) h.append(b).append("=").append(v).append(" ");
+    fragments[threads - 1] = ctx.fragments_written();
+    batches[threads - 1] = ctx.split_batches();
+  }
+  CHECK(hashes[1] == hashes[0]);
+  CHECK(fragments[1] == fragments[0]);
+  CHECK(batches[0] == 0);
+  MESSAGE("terrain ", prog.width, "x", prog.height, ": ", batches[1], " batches split at 2 threads, ", fragments[0],
+          " fragments");
+  CHECK(batches[1] > 0);
 }
