@@ -509,9 +509,11 @@ class Context {
     double hw = 0, hh = 0;                   // viewport half width and height
     int cx0 = 0, cy0 = 0, cx1 = 0, cy1 = 0;  // the window, relative to the viewport corner
     bool bands = false;                      // threads: polygons batched and rows split (no probe)
-    FragmentBuffers buffers;                 // bands only: the framebuffer's arrays
+    bool direct_writes = false;              // no probe: spans go to run_fragment_plan directly
+    FragmentBuffers buffers;                 // direct_writes: the framebuffer's arrays
   };
-  // Shared state made ready here when `bands` (fragment plan, combiner plan, pool).
+  // Shared state made ready here when `direct_writes` (fragment plan, combiner
+  // plan, buffers) and `bands` (the pool).
   DrawSetup draw_setup(const ShadingState& st, const ShadingPlan& plan);
   // Flat-shading copy, clipping, window coordinates: appends the polygon's window
   // vertices to `out` (a fan) and returns true, or leaves `out` alone and returns

@@ -206,15 +206,18 @@ Context::DrawSetup Context::draw_setup(const ShadingState& st, const ShadingPlan
   // with one thread. Shared state is made ready here (fragment plan, combiner
   // plan), then only read; the probe forces one thread (it records in order).
   ds.bands = threads_ > 1 && !probe_.enabled();
-  if (ds.bands) {
+  // Without the probe, spans go straight to run_fragment_plan with the plan and
+  // buffers looked up once here (no state changes inside glBegin/glEnd).
+  ds.direct_writes = !probe_.enabled();
+  if (ds.direct_writes) {
     update_fragment_plan();
     if (combiners_.enabled) combiner_plan();
     if (fb_.format().float_color()) ds.buffers.values = fb_.values().data();
     else ds.buffers.codes = fb_.codes().data();
     if (fb_.has_stencil()) ds.buffers.stencil = fb_.stencil().data();
     if (fb_.has_depth()) ds.buffers.depth = fb_.depth().data();
-    if (!pool_ || pool_->threads() != threads_) pool_ = std::make_shared<WorkerPool>(threads_);
   }
+  if (ds.bands && (!pool_ || pool_->threads() != threads_)) pool_ = std::make_shared<WorkerPool>(threads_);
   return ds;
 }
 
@@ -275,8 +278,11 @@ void Context::raster_triangle(const DrawSetup& ds, const std::array<const Window
     if (has_depth) span.depth.resize(static_cast<std::size_t>(n));
     // The span path (sim/draw_span.cpp), or every fragment on its own below.
     auto write = [&] {
-      if (band < 0) write_fragments(span);
-      else {  // write_fragments without the plan update and the probe (both done or off)
+      if (band < 0 && !ds.direct_writes) write_fragments(span);
+      else if (band < 0) {  // write_fragments without the plan update and the probe (done, off)
+        fragments_written_ += static_cast<std::uint64_t>(span.count);
+        run_fragment_plan(*fragment_current_plan_, fragment_current_constants_, span, ds.buffers, fb_.width());
+      } else {  // the same on a worker
         band_fragments_[static_cast<std::size_t>(band)] += static_cast<std::uint64_t>(span.count);
         run_fragment_plan(*fragment_current_plan_, fragment_current_constants_, span, ds.buffers, fb_.width());
       }
