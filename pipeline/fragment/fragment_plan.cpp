@@ -307,10 +307,11 @@ struct FixedKernel {
   }
 };
 
-// The written channels all use one of the integer forms of FixedKernel::channel
-// with (ONE, ONE) factors, or MIN / MAX: computed on the interleaved codes
+// The written channels all copy the source, or all use one of the integer forms
+// of FixedKernel::channel with (ONE, ONE) factors, or MIN / MAX: computed on the
+// interleaved codes
 // directly (no de-interleaving), the same values. 0: not applicable.
-enum class Interleaved : std::uint8_t { None, Add, Sub, RevSub, Min, Max };
+enum class Interleaved : std::uint8_t { None, Copy, Add, Sub, RevSub, Min, Max };
 
 Interleaved interleaved_op(const FragmentPlanKey& key) {
   Interleaved op = Interleaved::None;
@@ -319,7 +320,8 @@ Interleaved interleaved_op(const FragmentPlanKey& key) {
     if (ch == ChannelOp::Keep) continue;
     const bool one_one = key.blend_src == gl::ONE && key.blend_dst == gl::ONE;
     Interleaved o = Interleaved::None;
-    if (ch == ChannelOp::Add && one_one) o = Interleaved::Add;
+    if (ch == ChannelOp::Copy) o = Interleaved::Copy;
+    else if (ch == ChannelOp::Add && one_one) o = Interleaved::Add;
     else if (ch == ChannelOp::Sub && one_one) o = Interleaved::Sub;
     else if (ch == ChannelOp::RevSub && one_one) o = Interleaved::RevSub;
     else if (ch == ChannelOp::Min) o = Interleaved::Min;
@@ -338,7 +340,8 @@ void color_interleaved(std::uint16_t m, const std::uint16_t* in, std::uint16_t* 
     for (int c = 0; c < 4; ++c) {
       const std::uint16_t s = in[4 * j + c], d = px[4 * j + c];
       std::uint16_t r;
-      if constexpr (kOp == Interleaved::Add) r = static_cast<std::uint16_t>(std::min<std::uint32_t>(std::uint32_t{s} + d, m));
+      if constexpr (kOp == Interleaved::Copy) r = s;
+      else if constexpr (kOp == Interleaved::Add) r = static_cast<std::uint16_t>(std::min<std::uint32_t>(std::uint32_t{s} + d, m));
       else if constexpr (kOp == Interleaved::Sub) r = static_cast<std::uint16_t>(s > d ? s - d : 0);
       else if constexpr (kOp == Interleaved::RevSub) r = static_cast<std::uint16_t>(d > s ? d - s : 0);
       else if constexpr (kOp == Interleaved::Min) r = std::min(s, d);
@@ -359,6 +362,7 @@ void color_stage_fixed(const FragmentPlan& plan, const FragmentConstants& k, con
     for (int c = 0; c < 4; ++c) wmask[c] = plan.key.channel[c] != ChannelOp::Keep ? 0xFFFF : 0;
     const auto m = static_cast<std::uint16_t>(kM ? kM : k.color_max);
     switch (op) {
+      case Interleaved::Copy: color_interleaved<Interleaved::Copy>(m, in, px, n, wmask, alive); return;
       case Interleaved::Add: color_interleaved<Interleaved::Add>(m, in, px, n, wmask, alive); return;
       case Interleaved::Sub: color_interleaved<Interleaved::Sub>(m, in, px, n, wmask, alive); return;
       case Interleaved::RevSub: color_interleaved<Interleaved::RevSub>(m, in, px, n, wmask, alive); return;
