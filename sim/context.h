@@ -81,6 +81,13 @@ struct WindowVertex;       // sim/draw_span.h
 class WorkerPool;          // sim/worker_pool.h
 struct TriangleCoverage;   // pipeline/raster/triangle.h
 struct CoverageRun;
+// Runs of one triangle for the span path: `count` fragments whose rasterizer
+// weights are weight[0 .. count), in `runs` runs of length[0], length[1], ...
+struct FastRuns {
+  const std::array<std::int64_t, 3>* weight = nullptr;
+  const int* length = nullptr;
+  int runs = 0, count = 0;
+};
 
 class Context {
  public:
@@ -571,6 +578,12 @@ class Context {
     std::array<std::vector<std::uint16_t>, kMaxTextureUnits> texels;
     std::vector<double> s, t;
     std::vector<std::uint32_t> lane;
+    // One triangle's runs (sim/draw.cpp): weights, rows, first pixels, lengths,
+    // and the shaded codes and depths, all runs one after the other.
+    std::vector<std::array<std::int64_t, 3>> weight;
+    std::vector<int> run_y, run_x0, run_length;
+    std::vector<std::uint16_t> codes;
+    std::vector<std::uint32_t> depth;
   };
   SpanScratch span_scratch_;
   // Threads: the pool (rebuilt when threads() changes) and per-band scratch.
@@ -595,9 +608,14 @@ class Context {
   std::int64_t batch_area_ = 0;
   // A run shaded at once into `span` (fixed profiles); false when the run needs
   // the generic per-fragment path (float profiles, λ needed, the probe inside it).
-  bool shade_run_fast(const ShadingState& st, const ShadingPlan& plan, const std::array<const WindowVertex*, 3>& tv,
-                      const TriangleCoverage& cov, const CoverageRun& run, bool flat, bool shade, FragmentSpan& span,
-                      SpanScratch& scratch);
+  // The span path (sim/draw_span.cpp): whether it applies to this draw (a fixed
+  // profile, every sampled texture one sample_span_fixed takes), and the shading
+  // of runs of one triangle: colour codes into out (4 per fragment, the runs one
+  // after the other), depth codes into depth (when the framebuffer has depth).
+  bool span_path_supported(const ShadingState& st, const ShadingPlan& plan, bool shade) const;
+  void shade_runs_fast(const ShadingState& st, const ShadingPlan& plan, const std::array<const WindowVertex*, 3>& tv,
+                       const TriangleCoverage& cov, const FastRuns& runs, bool flat, bool shade, std::uint16_t* out,
+                       std::uint32_t* depth, SpanScratch& scratch);
 
 };
 

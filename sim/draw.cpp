@@ -266,7 +266,66 @@ void Context::raster_triangle(const DrawSetup& ds, const std::array<const Window
   const Arithmetic arith = profile_.arithmetic;
   const int vx = ds.vx, vy = ds.vy;
   const bool has_depth = ds.has_depth, flat = ds.flat, shade = ds.shade;
-  // One run into `span`; `band` >= 0: on a worker (no probe, plans ready).
+  SpanScratch& sc = band < 0 ? span_scratch_ : band_scratch_[static_cast<std::size_t>(band)];
+  // `span` to the per-fragment operations; `band` >= 0: on a worker (no probe, plans ready).
+  auto write = [&] {
+    if (band < 0 && !ds.direct_writes) write_fragments(span);
+    else if (band < 0) {  // write_fragments without the plan update and the probe (done, off)
+      fragments_written_ += static_cast<std::uint64_t>(span.count);
+      run_fragment_plan(*fragment_current_plan_, fragment_current_constants_, span, ds.buffers, fb_.width());
+    } else {  // the same on a worker
+      band_fragments_[static_cast<std::size_t>(band)] += static_cast<std::uint64_t>(span.count);
+      run_fragment_plan(*fragment_current_plan_, fragment_current_constants_, span, ds.buffers, fb_.width());
+    }
+  };
+  auto count_fast_run = [&] {
+    if (band < 0) ++fast_runs_;
+    else ++band_fast_runs_[static_cast<std::size_t>(band)];
+  };
+  const bool span_path = fast_paths_ && span_path_supported(st, plan, shade);
+  const std::array<SnappedVertex, 3> sv{tv[0]->p, tv[1]->p, tv[2]->p};
+  if (span_path && (band >= 0 || ds.direct_writes)) {
+    // The span path for the whole triangle (no probe): every run's weights are
+    // gathered, shaded in one go (per-call costs paid once per triangle, not
+    // once per row), then each run goes to the fragment operations in row order.
+    sc.weight.clear();
+    sc.run_y.clear();
+    sc.run_x0.clear();
+    sc.run_length.clear();
+    TriangleCoverage tcov;
+    struct Gather {
+      SpanScratch* sc;
+      TriangleCoverage* cov;
+    } g{&sc, &tcov};
+    rasterize_triangle(sv, profile_.subpixel_bits, ds.cx0, y0, ds.cx1, y1,  // (one capture: no allocation)
+                       [&g](const TriangleCoverage& cov, const CoverageRun& run) {
+                         *g.cov = cov;
+                         g.sc->run_y.push_back(run.y);
+                         g.sc->run_x0.push_back(run.x0);
+                         g.sc->run_length.push_back(static_cast<int>(run.weight.size()));
+                         g.sc->weight.insert(g.sc->weight.end(), run.weight.begin(), run.weight.end());
+                       });
+    if (sc.run_length.empty()) return;
+    const FastRuns runs{sc.weight.data(), sc.run_length.data(), static_cast<int>(sc.run_length.size()),
+                        static_cast<int>(sc.weight.size())};
+    sc.codes.resize(4 * static_cast<std::size_t>(runs.count));
+    if (has_depth) sc.depth.resize(static_cast<std::size_t>(runs.count));
+    shade_runs_fast(st, plan, tv, tcov, runs, flat, shade, sc.codes.data(), has_depth ? sc.depth.data() : nullptr, sc);
+    for (int r = 0, off = 0; r < runs.runs; off += runs.length[r], ++r) {
+      const auto o = static_cast<std::size_t>(off), len = static_cast<std::size_t>(runs.length[r]);
+      span.y = sc.run_y[static_cast<std::size_t>(r)] + vy;
+      span.x0 = sc.run_x0[static_cast<std::size_t>(r)] + vx;
+      span.count = runs.length[r];
+      span.codes.assign(sc.codes.begin() + static_cast<std::ptrdiff_t>(4 * o),
+                        sc.codes.begin() + static_cast<std::ptrdiff_t>(4 * (o + len)));
+      if (has_depth)
+        span.depth.assign(sc.depth.begin() + static_cast<std::ptrdiff_t>(o), sc.depth.begin() + static_cast<std::ptrdiff_t>(o + len));
+      count_fast_run();
+      write();
+    }
+    return;
+  }
+  // One run into `span` (the probe is on, or the span path does not apply).
   auto shade_run = [&](const TriangleCoverage& cov, const CoverageRun& run) {
     const std::int64_t A = cov.area;
     const int n = static_cast<int>(run.weight.size());
@@ -276,21 +335,12 @@ void Context::raster_triangle(const DrawSetup& ds, const std::array<const Window
     if (arith == Arithmetic::Fixed) span.codes.resize(4 * static_cast<std::size_t>(n));
     else span.values.resize(4 * static_cast<std::size_t>(n));
     if (has_depth) span.depth.resize(static_cast<std::size_t>(n));
-    // The span path (sim/draw_span.cpp), or every fragment on its own below.
-    auto write = [&] {
-      if (band < 0 && !ds.direct_writes) write_fragments(span);
-      else if (band < 0) {  // write_fragments without the plan update and the probe (done, off)
-        fragments_written_ += static_cast<std::uint64_t>(span.count);
-        run_fragment_plan(*fragment_current_plan_, fragment_current_constants_, span, ds.buffers, fb_.width());
-      } else {  // the same on a worker
-        band_fragments_[static_cast<std::size_t>(band)] += static_cast<std::uint64_t>(span.count);
-        run_fragment_plan(*fragment_current_plan_, fragment_current_constants_, span, ds.buffers, fb_.width());
-      }
-    };
-    if (fast_paths_ && shade_run_fast(st, plan, tv, cov, run, flat, shade, span,
-                                      band < 0 ? span_scratch_ : band_scratch_[static_cast<std::size_t>(band)])) {
-      if (band < 0) ++fast_runs_;
-      else ++band_fast_runs_[static_cast<std::size_t>(band)];
+    // The span path for a run without the probed pixel (the probed one takes the
+    // reference path, which records what it computes), or every fragment below.
+    if (span_path && !(probe_.enabled() && probe_.y() == span.y && probe_.x() >= span.x0 && probe_.x() < span.x0 + n)) {
+      const FastRuns one{run.weight.data(), &n, 1, n};
+      shade_runs_fast(st, plan, tv, cov, one, flat, shade, span.codes.data(), has_depth ? span.depth.data() : nullptr, sc);
+      count_fast_run();
       write();
       return;
     }
@@ -371,7 +421,6 @@ void Context::raster_triangle(const DrawSetup& ds, const std::array<const Window
     }
     write();
   };
-  const std::array<SnappedVertex, 3> sv{tv[0]->p, tv[1]->p, tv[2]->p};
   rasterize_triangle(sv, profile_.subpixel_bits, ds.cx0, y0, ds.cx1, y1,  // (one capture: no allocation)
                      [&shade_run](const TriangleCoverage& cov, const CoverageRun& run) { shade_run(cov, run); });
 }

@@ -1,6 +1,8 @@
-// The span path of the draw (docs/performance.md): one CoverageRun shaded at
-// once, in fixed profiles, with the same numbers as the per-fragment path of
-// sim/draw.cpp (which stays the reference and serves --probe):
+// The span path of the draw (docs/performance.md): the runs of one triangle
+// shaded at once (all of its rows, or one run next to a probed pixel), in fixed
+// profiles, with the same numbers as the per-fragment path of sim/draw.cpp
+// (which stays the reference and serves --probe). Every fragment's numbers
+// depend only on its own weights; only the DDAs below restart at every run:
 //   - colour and depth codes by interpolate_code_run, the exact DDA form of
 //     interpolate_code (numerics §8.2);
 //   - texture coordinates by the very same binary64 operations, in the same
@@ -8,7 +10,7 @@
 //   - texels by sample_span_fixed (textures whose result cannot depend on λ);
 //   - texture environments by texture_environment_span_fixed where an integer
 //     kernel exists, else texture_environment per fragment; the colour sum on
-//     codes; or the register combiners' shade_span over the whole run.
+//     codes; or the register combiners' shade_span over all the fragments.
 #include <algorithm>
 
 #include "pipeline/combiners/combiner_span.h"
@@ -20,14 +22,14 @@ namespace ffsim {
 
 namespace {
 
-// Interpolated colour codes of the run, 4 per fragment (flat: the provoking
+// Interpolated colour codes of the runs, 4 per fragment (flat: the provoking
 // vertex's, which draw_polygon copied to every vertex).
 void interpolate_colors(const std::array<const WindowVertex*, 3>& tv, bool secondary, const TriangleCoverage& cov,
-                        const CoverageRun& run, bool flat, int n, std::vector<std::uint32_t>& lane,
-                        std::uint16_t* out) {
+                        const FastRuns& runs, bool flat, std::vector<std::uint32_t>& lane, std::uint16_t* out) {
   auto code = [&](const WindowVertex* v, int c) { return secondary ? v->secondary_code[c] : v->color_code[c]; };
   auto constant = [&](int c) { return flat || (code(tv[0], c) == code(tv[1], c) && code(tv[1], c) == code(tv[2], c)); };
-  if (constant(0) && constant(1) && constant(2) && constant(3)) {  // one colour for the whole run
+  const int n = runs.count;
+  if (constant(0) && constant(1) && constant(2) && constant(3)) {  // one colour for every fragment
     const std::array<std::uint16_t, 4> k{static_cast<std::uint16_t>(code(tv[0], 0)), static_cast<std::uint16_t>(code(tv[0], 1)),
                                          static_cast<std::uint16_t>(code(tv[0], 2)), static_cast<std::uint16_t>(code(tv[0], 3))};
     for (int f = 0; f < n; ++f) std::copy_n(k.data(), 4, out + 4 * f);
@@ -40,9 +42,11 @@ void interpolate_colors(const std::array<const WindowVertex*, 3>& tv, bool secon
       for (int f = 0; f < n; ++f) out[4 * f + c] = k;
       continue;
     }
-    interpolate_code_run(run.weight[0], cov.dwdx, cov.area, code(tv[0], c), code(tv[1], c), code(tv[2], c), n,
-                         lane.data());
-    for (int f = 0; f < n; ++f) out[4 * f + c] = static_cast<std::uint16_t>(lane[static_cast<std::size_t>(f)]);
+    for (int r = 0, off = 0; r < runs.runs; off += runs.length[r], ++r) {  // the DDA restarts at every run
+      interpolate_code_run(runs.weight[off], cov.dwdx, cov.area, code(tv[0], c), code(tv[1], c), code(tv[2], c),
+                           runs.length[r], lane.data());
+      for (int f = 0; f < runs.length[r]; ++f) out[4 * (off + f) + c] = static_cast<std::uint16_t>(lane[static_cast<std::size_t>(f)]);
+    }
   }
 }
 
@@ -55,12 +59,11 @@ void interpolate_colors(const std::array<const WindowVertex*, 3>& tv, bool secon
 // integer weights and their partial sums are exact in binary64), and x / 1 = x:
 // v_2 and the two divisions by it are skipped with the same result.
 void texture_coordinates(const std::array<const WindowVertex*, 3>& tv, int u, std::int64_t area,
-                         const CoverageRun& run, int n, double* s, double* t) {
+                         const std::array<std::int64_t, 3>* w, int n, double* s, double* t) {
   const double a = static_cast<double>(area);
   const auto& c0 = tv[0]->tcw[u];
   const auto& c1 = tv[1]->tcw[u];
   const auto& c2 = tv[2]->tcw[u];
-  const std::array<std::int64_t, 3>* w = run.weight.data();
   const bool unit_q = c0[2] == 1.0 && c1[2] == 1.0 && c2[2] == 1.0 && area < (std::int64_t{1} << 53);
   if (unit_q) {
     for (int f = 0; f < n; ++f) {
@@ -84,31 +87,36 @@ void texture_coordinates(const std::array<const WindowVertex*, 3>& tv, int u, st
 
 }  // namespace
 
-bool Context::shade_run_fast(const ShadingState& st, const ShadingPlan& plan,
-                             const std::array<const WindowVertex*, 3>& tv, const TriangleCoverage& cov,
-                             const CoverageRun& run, bool flat, bool shade, FragmentSpan& span, SpanScratch& sc) {
+bool Context::span_path_supported(const ShadingState& st, const ShadingPlan& plan, bool shade) const {
   if (profile_.arithmetic != Arithmetic::Fixed) return false;
-  const int n = span.count;
-  if (probe_.enabled() && probe_.y() == span.y && probe_.x() >= span.x0 && probe_.x() < span.x0 + n) return false;
   if (shade)
     for (int u = 0; u < kShadeUnits; ++u)
       if (plan.sample[u] && !sample_span_supported(*st.units[u].texture, st.units[u].dims, st.sample)) return false;
+  return true;
+}
 
+void Context::shade_runs_fast(const ShadingState& st, const ShadingPlan& plan,
+                              const std::array<const WindowVertex*, 3>& tv, const TriangleCoverage& cov,
+                              const FastRuns& runs, bool flat, bool shade, std::uint16_t* out, std::uint32_t* depth,
+                              SpanScratch& sc) {
+  const int n = runs.count;
   const auto N = static_cast<std::size_t>(n);
-  sc.lane.resize(N);
+  int longest = 0;
+  for (int r = 0; r < runs.runs; ++r) longest = std::max(longest, runs.length[r]);
+  sc.lane.resize(static_cast<std::size_t>(longest));
   if (fb_.has_depth())
-    interpolate_code_run(run.weight[0], cov.dwdx, cov.area, tv[0]->depth, tv[1]->depth, tv[2]->depth, n,
-                         span.depth.data());
-  std::uint16_t* out = span.codes.data();
-  interpolate_colors(tv, false, cov, run, flat, n, sc.lane, out);  // the primary colour, shaded in place
-  if (!shade) return true;
+    for (int r = 0, off = 0; r < runs.runs; off += runs.length[r], ++r)
+      interpolate_code_run(runs.weight[off], cov.dwdx, cov.area, tv[0]->depth, tv[1]->depth, tv[2]->depth,
+                           runs.length[r], depth + off);
+  interpolate_colors(tv, false, cov, runs, flat, sc.lane, out);  // the primary colour, shaded in place
+  if (!shade) return;
 
   const bool combine = combiners_.enabled;
   const combiners::CombinerPlan* cp = combine ? &combiner_plan() : nullptr;
   const bool need_secondary = combine ? cp->secondary_needed : plan.color_sum;
   if (need_secondary) {
     sc.secondary.resize(4 * N);
-    interpolate_colors(tv, true, cov, run, flat, n, sc.lane, sc.secondary.data());
+    interpolate_colors(tv, true, cov, runs, flat, sc.lane, sc.secondary.data());
   }
   // Texture coordinates (the per-fragment path's operations exactly: Σ in k
   // order from 0, divided by A, then s/q and t/q) and the span's texels.
@@ -127,7 +135,7 @@ bool Context::shade_run_fast(const ShadingState& st, const ShadingPlan& plan,
     // every sum starts from +0, so a ±0 term changes nothing. A NaN never
     // compares equal: it recomputes.)
     if (coords_of < 0 || !same_coords(coords_of, u)) {
-      texture_coordinates(tv, u, cov.area, run, n, sc.s.data(), sc.t.data());
+      texture_coordinates(tv, u, cov.area, runs.weight, n, sc.s.data(), sc.t.data());
       coords_of = u;
     }
     sc.texels[u].resize(4 * N);
@@ -157,7 +165,7 @@ bool Context::shade_run_fast(const ShadingState& st, const ShadingPlan& plan,
     }
     const std::array<double, 4> fog{0, 0, 0, 0};  // fog not modelled (combine_fragment)
     if (!combiners::shade_span_fast(*cp, in, fog, out)) combiners::shade_span(*cp, in, fog, out);
-    return true;
+    return;
   }
 
   // Texture environments (texture_environments), unit by unit, in place on `out`;
@@ -181,7 +189,7 @@ bool Context::shade_run_fast(const ShadingState& st, const ShadingPlan& plan,
     // primary colour, kept aside before the first unit changes `out`).
     if (!primary_kept) {  // (units before this one may have changed `out`)
       sc.primary.resize(4 * N);
-      interpolate_colors(tv, false, cov, run, flat, n, sc.lane, sc.primary.data());
+      interpolate_colors(tv, false, cov, runs, flat, sc.lane, sc.primary.data());
       primary_kept = true;
     }
     Texel t{};
@@ -205,7 +213,6 @@ bool Context::shade_run_fast(const ShadingState& st, const ShadingPlan& plan,
       for (std::size_t c = 0; c < 3; ++c)
         out[i + c] = static_cast<std::uint16_t>(std::min<std::uint32_t>(std::uint32_t{out[i + c]} + sc.secondary[i + c], m));
   }
-  return true;
 }
 
 }  // namespace ffsim
