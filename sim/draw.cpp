@@ -285,44 +285,66 @@ void Context::raster_triangle(const DrawSetup& ds, const std::array<const Window
   const bool span_path = fast_paths_ && span_path_supported(st, plan, shade);
   const std::array<SnappedVertex, 3> sv{tv[0]->p, tv[1]->p, tv[2]->p};
   if (span_path && (band >= 0 || ds.direct_writes)) {
-    // The span path for the whole triangle (no probe): every run's weights are
-    // gathered, shaded in one go (per-call costs paid once per triangle, not
-    // once per row), then each run goes to the fragment operations in row order.
-    sc.weight.clear();
-    sc.run_y.clear();
-    sc.run_x0.clear();
-    sc.run_length.clear();
+    // The span path for the whole triangle (no probe): runs' weights are gathered
+    // and shaded in one go (per-call costs paid once per group of rows, not once
+    // per row), then each run goes to the fragment operations in row order. A
+    // group closes at kGroupFragments fragments so its arrays stay in cache; a
+    // run of kLongRun fragments or more is shaded on its own, in place.
+    constexpr int kGroupFragments = 512, kLongRun = 64;
     TriangleCoverage tcov;
-    struct Gather {
-      SpanScratch* sc;
-      TriangleCoverage* cov;
-    } g{&sc, &tcov};
+    auto clear_group = [&] {
+      sc.weight.clear();
+      sc.run_y.clear();
+      sc.run_x0.clear();
+      sc.run_length.clear();
+    };
+    auto shade_group = [&] {
+      if (sc.run_length.empty()) return;
+      const FastRuns runs{sc.weight.data(), sc.run_length.data(), static_cast<int>(sc.run_length.size()),
+                          static_cast<int>(sc.weight.size())};
+      sc.codes.resize(4 * static_cast<std::size_t>(runs.count));
+      if (has_depth) sc.depth.resize(static_cast<std::size_t>(runs.count));
+      shade_runs_fast(st, plan, tv, tcov, runs, flat, shade, sc.codes.data(), has_depth ? sc.depth.data() : nullptr, sc);
+      for (int r = 0, off = 0; r < runs.runs; off += runs.length[r], ++r) {
+        const auto o = static_cast<std::size_t>(off), len = static_cast<std::size_t>(runs.length[r]);
+        span.y = sc.run_y[static_cast<std::size_t>(r)] + vy;
+        span.x0 = sc.run_x0[static_cast<std::size_t>(r)] + vx;
+        span.count = runs.length[r];
+        span.codes.assign(sc.codes.begin() + static_cast<std::ptrdiff_t>(4 * o),
+                          sc.codes.begin() + static_cast<std::ptrdiff_t>(4 * (o + len)));
+        if (has_depth)
+          span.depth.assign(sc.depth.begin() + static_cast<std::ptrdiff_t>(o), sc.depth.begin() + static_cast<std::ptrdiff_t>(o + len));
+        count_fast_run();
+        write();
+      }
+      clear_group();
+    };
+    auto gather = [&](const TriangleCoverage& cov, const CoverageRun& run) {
+      const int n = static_cast<int>(run.weight.size());
+      if (n >= kLongRun) {  // a long run pays its per-call costs alone: shaded in place, not copied
+        shade_group();
+        span.y = run.y + vy;
+        span.x0 = run.x0 + vx;
+        span.count = n;
+        span.codes.resize(4 * static_cast<std::size_t>(n));
+        if (has_depth) span.depth.resize(static_cast<std::size_t>(n));
+        const FastRuns one{run.weight.data(), &n, 1, n};
+        shade_runs_fast(st, plan, tv, cov, one, flat, shade, span.codes.data(), has_depth ? span.depth.data() : nullptr, sc);
+        count_fast_run();
+        write();
+        return;
+      }
+      tcov = cov;
+      sc.run_y.push_back(run.y);
+      sc.run_x0.push_back(run.x0);
+      sc.run_length.push_back(static_cast<int>(run.weight.size()));
+      sc.weight.insert(sc.weight.end(), run.weight.begin(), run.weight.end());
+      if (sc.weight.size() >= static_cast<std::size_t>(kGroupFragments)) shade_group();
+    };
+    clear_group();
     rasterize_triangle(sv, profile_.subpixel_bits, ds.cx0, y0, ds.cx1, y1,  // (one capture: no allocation)
-                       [&g](const TriangleCoverage& cov, const CoverageRun& run) {
-                         *g.cov = cov;
-                         g.sc->run_y.push_back(run.y);
-                         g.sc->run_x0.push_back(run.x0);
-                         g.sc->run_length.push_back(static_cast<int>(run.weight.size()));
-                         g.sc->weight.insert(g.sc->weight.end(), run.weight.begin(), run.weight.end());
-                       });
-    if (sc.run_length.empty()) return;
-    const FastRuns runs{sc.weight.data(), sc.run_length.data(), static_cast<int>(sc.run_length.size()),
-                        static_cast<int>(sc.weight.size())};
-    sc.codes.resize(4 * static_cast<std::size_t>(runs.count));
-    if (has_depth) sc.depth.resize(static_cast<std::size_t>(runs.count));
-    shade_runs_fast(st, plan, tv, tcov, runs, flat, shade, sc.codes.data(), has_depth ? sc.depth.data() : nullptr, sc);
-    for (int r = 0, off = 0; r < runs.runs; off += runs.length[r], ++r) {
-      const auto o = static_cast<std::size_t>(off), len = static_cast<std::size_t>(runs.length[r]);
-      span.y = sc.run_y[static_cast<std::size_t>(r)] + vy;
-      span.x0 = sc.run_x0[static_cast<std::size_t>(r)] + vx;
-      span.count = runs.length[r];
-      span.codes.assign(sc.codes.begin() + static_cast<std::ptrdiff_t>(4 * o),
-                        sc.codes.begin() + static_cast<std::ptrdiff_t>(4 * (o + len)));
-      if (has_depth)
-        span.depth.assign(sc.depth.begin() + static_cast<std::ptrdiff_t>(o), sc.depth.begin() + static_cast<std::ptrdiff_t>(o + len));
-      count_fast_run();
-      write();
-    }
+                       [&gather](const TriangleCoverage& cov, const CoverageRun& run) { gather(cov, run); });
+    shade_group();
     return;
   }
   // One run into `span` (the probe is on, or the span path does not apply).
