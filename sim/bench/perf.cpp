@@ -352,7 +352,7 @@ int time_one_trace(const Options& o, std::ostream& out, std::ostream& err) {
         << fixed(t.max * 1e3, 3) << "), " << fixed(1 / t.median, 1) << " frames/s, "
         << fixed(static_cast<double>(fragments) / t.median / 1e6, 1) << " Mfragments/s\n";
   } catch (const trace::TraceError& e) {
-    err << "ffsim bench --perf: " << e.where().str() << ": " << e.what() << "\n";
+    err << "ffsim bench --perf: " << e.what() << "\n";
     return 1;
   } catch (const std::exception& e) {
     err << "ffsim bench --perf: " << e.what() << "\n";

@@ -79,4 +79,15 @@ TEST_CASE("bench --perf: bad arguments are one-line usage errors") {
                            "--out", (fs::temp_directory_path() / "ffsim-perf-missing").string()});
   CHECK(missing.code == 1);
   CHECK(missing.err.find("/nonexistent/perf/quad-replace.trace") != std::string::npos);
+  // --trace with a trace error: one line naming file:line:column once, then the message.
+  const fs::path bad = fs::temp_directory_path() / "ffsim-perf-bad.trace";
+  {
+    std::ofstream f(bad);
+    f << "ffsim-trace 1\nparam w 4 \"w\"\nparam w 5 \"again\"\n";
+  }
+  const Run dup = run({"bench", "--perf", "--trace", bad.string(), "--repeat", "1"});
+  CHECK(dup.code == 1);
+  const std::string where = bad.string() + ":3:7: ";
+  CHECK(dup.err.rfind("ffsim bench --perf: " + where + "parameter `w` is already declared at " + bad.string() + ":2:7", 0) == 0);
+  CHECK(dup.err.find(where, dup.err.find(where) + 1) == std::string::npos);
 }
