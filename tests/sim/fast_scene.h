@@ -192,14 +192,20 @@ inline void random_vertex(Context& c, SceneRng& r, bool texel_aligned) {
   c.vertex3(x, y, r.d(-0.9, 0.9));
 }
 
+// Random clear values (depth in [depth_lo, 1]), every buffer cleared, then a
+// random projection: how every random scene starts.
+inline void random_clear_and_projection(Context& c, SceneRng& r, double depth_lo) {
+  c.clearColor(r.d(0, 1), r.d(0, 1), r.d(0, 1), r.d(0, 1));
+  c.clearStencil(r.i(0, 255));
+  c.clearDepth(r.d(depth_lo, 1));
+  c.clear(gl::COLOR_BUFFER_BIT | gl::STENCIL_BUFFER_BIT | gl::DEPTH_BUFFER_BIT);
+  random_projection(c, r);
+}
+
 // One scene: state, then triangles (and pixel copies). Everything from `seed`.
 inline void draw_random_scene(Context& c, std::uint32_t seed, const SceneOptions& opt = {}) {
   SceneRng r(seed);
-  c.clearColor(r.d(0, 1), r.d(0, 1), r.d(0, 1), r.d(0, 1));
-  c.clearStencil(r.i(0, 255));
-  c.clearDepth(r.d(0, 1));
-  c.clear(gl::COLOR_BUFFER_BIT | gl::STENCIL_BUFFER_BIT | gl::DEPTH_BUFFER_BIT);
-  random_projection(c, r);
+  random_clear_and_projection(c, r, 0);
   for (int pass = 0; pass < 2; ++pass) {
     if (opt.textures)
       for (int u = 0; u < 2; ++u) {

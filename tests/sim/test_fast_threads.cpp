@@ -30,11 +30,7 @@ constexpr int kMeshW = 160, kMeshH = 120, kCellsX = 10, kCellsY = 6;
 
 void draw_mesh_scene(Context& c, std::uint32_t seed) {
   SceneRng r(seed);
-  c.clearColor(r.d(0, 1), r.d(0, 1), r.d(0, 1), r.d(0, 1));
-  c.clearStencil(r.i(0, 255));
-  c.clearDepth(r.d(0.5, 1));
-  c.clear(gl::COLOR_BUFFER_BIT | gl::STENCIL_BUFFER_BIT | gl::DEPTH_BUFFER_BIT);
-  random_projection(c, r);
+  random_clear_and_projection(c, r, 0.5);
   struct V {
     double x, y, z;
     std::array<double, 4> color, secondary;
