@@ -81,12 +81,13 @@ struct WindowVertex;       // sim/draw_span.h
 class WorkerPool;          // sim/worker_pool.h
 struct TriangleCoverage;   // pipeline/raster/triangle.h
 struct CoverageRun;
-// Runs of one triangle for the span path: `count` fragments whose rasterizer
-// weights are weight[0 .. count), in `runs` runs of length[0], length[1], ...
+// Runs of one triangle for the span path: `count` fragments in `runs` runs of
+// length[0], length[1], ...; run r's weights are first[r] + i·dwdx at its i-th
+// fragment (TriangleCoverage).
 struct FastRuns {
-  const std::array<std::int64_t, 3>* weight = nullptr;
-  const int* length = nullptr;
-  int runs = 0, count = 0;
+  const std::array<std::int64_t, 3>* first = nullptr;  // per run: the weights at its first fragment
+  const int* length = nullptr;                         // per run: its fragments
+  int runs = 0, count = 0;                             // runs; fragments of all runs
 };
 
 class Context {
@@ -578,8 +579,9 @@ class Context {
     std::array<std::vector<std::uint16_t>, kMaxTextureUnits> texels;
     std::vector<double> s, t;
     std::vector<std::uint32_t> lane;
-    // One triangle's runs (sim/draw.cpp): weights, rows, first pixels, lengths,
-    // and the shaded codes and depths, all runs one after the other.
+    // One triangle's runs (sim/draw.cpp): first weights, rows, first pixels,
+    // lengths (one per run), and the shaded codes and depths, all runs one after
+    // the other.
     std::vector<std::array<std::int64_t, 3>> weight;
     std::vector<int> run_y, run_x0, run_length;
     std::vector<std::uint16_t> codes;

@@ -292,7 +292,9 @@ void Context::raster_triangle(const DrawSetup& ds, const std::array<const Window
     // run of kLongRun fragments or more is shaded on its own, in place.
     constexpr int kGroupFragments = 512, kLongRun = 64;
     TriangleCoverage tcov;
+    int group_fragments = 0;
     auto clear_group = [&] {
+      group_fragments = 0;
       sc.weight.clear();
       sc.run_y.clear();
       sc.run_x0.clear();
@@ -301,7 +303,7 @@ void Context::raster_triangle(const DrawSetup& ds, const std::array<const Window
     auto shade_group = [&] {
       if (sc.run_length.empty()) return;
       const FastRuns runs{sc.weight.data(), sc.run_length.data(), static_cast<int>(sc.run_length.size()),
-                          static_cast<int>(sc.weight.size())};
+                          group_fragments};
       sc.codes.resize(4 * static_cast<std::size_t>(runs.count));
       if (has_depth) sc.depth.resize(static_cast<std::size_t>(runs.count));
       shade_runs_fast(st, plan, tv, tcov, runs, flat, shade, sc.codes.data(), has_depth ? sc.depth.data() : nullptr, sc);
@@ -320,7 +322,7 @@ void Context::raster_triangle(const DrawSetup& ds, const std::array<const Window
       clear_group();
     };
     auto gather = [&](const TriangleCoverage& cov, const CoverageRun& run) {
-      const int n = static_cast<int>(run.weight.size());
+      const int n = run.count;
       if (n >= kLongRun) {  // a long run pays its per-call costs alone: shaded in place, not copied
         shade_group();
         span.y = run.y + vy;
@@ -337,13 +339,15 @@ void Context::raster_triangle(const DrawSetup& ds, const std::array<const Window
       tcov = cov;
       sc.run_y.push_back(run.y);
       sc.run_x0.push_back(run.x0);
-      sc.run_length.push_back(static_cast<int>(run.weight.size()));
-      sc.weight.insert(sc.weight.end(), run.weight.begin(), run.weight.end());
-      if (sc.weight.size() >= static_cast<std::size_t>(kGroupFragments)) shade_group();
+      sc.run_length.push_back(n);
+      sc.weight.push_back(run.weight[0]);
+      group_fragments += n;
+      if (group_fragments >= kGroupFragments) shade_group();
     };
     clear_group();
-    rasterize_triangle(sv, profile_.subpixel_bits, ds.cx0, y0, ds.cx1, y1,  // (one capture: no allocation)
-                       [&gather](const TriangleCoverage& cov, const CoverageRun& run) { gather(cov, run); });
+    rasterize_triangle(
+        sv, profile_.subpixel_bits, ds.cx0, y0, ds.cx1, y1,  // (one capture: no allocation)
+        [&gather](const TriangleCoverage& cov, const CoverageRun& run) { gather(cov, run); }, RunWeights::First);
     shade_group();
     return;
   }

@@ -43,45 +43,76 @@ void interpolate_colors(const std::array<const WindowVertex*, 3>& tv, bool secon
       continue;
     }
     for (int r = 0, off = 0; r < runs.runs; off += runs.length[r], ++r) {  // the DDA restarts at every run
-      interpolate_code_run(runs.weight[off], cov.dwdx, cov.area, code(tv[0], c), code(tv[1], c), code(tv[2], c),
+      interpolate_code_run(runs.first[r], cov.dwdx, cov.area, code(tv[0], c), code(tv[1], c), code(tv[2], c),
                            runs.length[r], lane.data());
       for (int f = 0; f < runs.length[r]; ++f) out[4 * (off + f) + c] = static_cast<std::uint16_t>(lane[static_cast<std::size_t>(f)]);
     }
   }
 }
 
-// s/q and t/q of unit u at the run's fragments: the per-fragment path's
+// s/q and t/q of unit u at the runs' fragments: the per-fragment path's
 // operations exactly (v_j = ((0 + w_0·c_0j) + w_1·c_1j) + w_2·c_2j, then v_j / A,
-// then v_0 / v_2 and v_1 / v_2, binary64), written as a loop over fragments the
-// compiler can vectorise (IEEE operations give the same bits in vector lanes).
-// When the three q/w are exactly 1 (an affine mapping with w_clip = 1, e.g. an
-// orthographic screen quad) and A < 2^53, v_2 = (Σ w_k)/A = A/A = 1 exactly (the
-// integer weights and their partial sums are exact in binary64), and x / 1 = x:
-// v_2 and the two divisions by it are skipped with the same result.
-void texture_coordinates(const std::array<const WindowVertex*, 3>& tv, int u, std::int64_t area,
-                         const std::array<std::int64_t, 3>* w, int n, double* s, double* t) {
-  const double a = static_cast<double>(area);
+// then v_0 / v_2 and v_1 / v_2, binary64), written as loops over fragments the
+// compiler vectorises (IEEE operations give the same bits in vector lanes).
+//  - The weights are stepped, not read: w_k = first_k + i·dwdx_k. A covered
+//    fragment's weights lie in [0, A] (each edge function >= 0, their sum A), so
+//    for A < 2^53 every w_k, every i·dwdx_k (= w_k − first_k, in [−A, A]) and
+//    dwdx_k itself (i >= 1) is an integer below 2^53: first_k + i·dwdx_k computed
+//    in binary64 is the exact integer the reference converts. (i = 0: i·dwdx_k is
+//    ±0 and first_k + ±0 = first_k.) A >= 2^53: int64 weights, converted, as the
+//    reference does.
+//  - When the three q/w are exactly 1 (an affine mapping with w_clip = 1, e.g. an
+//    orthographic screen quad) and A < 2^53, v_2 = (Σ w_k)/A = A/A = 1 exactly
+//    (the integer weights and their partial sums are exact in binary64), and
+//    x / 1 = x: v_2 and the two divisions by it are skipped with the same result.
+template <bool kUnitQ>
+void coordinates_stepped(const std::array<double, 3>& c0, const std::array<double, 3>& c1,
+                         const std::array<double, 3>& c2, double a, const std::array<double, 3>& first,
+                         const std::array<double, 3>& d, int n, double* s, double* t) {
+  for (int i = 0; i < n; ++i) {
+    const double fi = static_cast<double>(i);
+    const double w0 = first[0] + fi * d[0], w1 = first[1] + fi * d[1], w2 = first[2] + fi * d[2];
+    const double v0 = (((0.0 + w0 * c0[0]) + w1 * c1[0]) + w2 * c2[0]) / a;
+    const double v1 = (((0.0 + w0 * c0[1]) + w1 * c1[1]) + w2 * c2[1]) / a;
+    if constexpr (kUnitQ) {
+      s[i] = v0;
+      t[i] = v1;
+    } else {
+      const double q = (((0.0 + w0 * c0[2]) + w1 * c1[2]) + w2 * c2[2]) / a;
+      s[i] = v0 / q;
+      t[i] = v1 / q;
+    }
+  }
+}
+
+void texture_coordinates(const std::array<const WindowVertex*, 3>& tv, int u, const TriangleCoverage& cov,
+                         const FastRuns& runs, double* s, double* t) {
+  const double a = static_cast<double>(cov.area);
   const auto& c0 = tv[0]->tcw[u];
   const auto& c1 = tv[1]->tcw[u];
   const auto& c2 = tv[2]->tcw[u];
-  const bool unit_q = c0[2] == 1.0 && c1[2] == 1.0 && c2[2] == 1.0 && area < (std::int64_t{1} << 53);
-  if (unit_q) {
-    for (int f = 0; f < n; ++f) {
-      const double w0 = static_cast<double>(w[f][0]), w1 = static_cast<double>(w[f][1]),
-                   w2 = static_cast<double>(w[f][2]);
-      s[f] = (((0.0 + w0 * c0[0]) + w1 * c1[0]) + w2 * c2[0]) / a;
-      t[f] = (((0.0 + w0 * c0[1]) + w1 * c1[1]) + w2 * c2[1]) / a;
+  const bool exact = cov.area < (std::int64_t{1} << 53);
+  const bool unit_q = c0[2] == 1.0 && c1[2] == 1.0 && c2[2] == 1.0 && exact;
+  const std::array<double, 3> d{static_cast<double>(cov.dwdx[0]), static_cast<double>(cov.dwdx[1]),
+                                static_cast<double>(cov.dwdx[2])};
+  for (int r = 0, off = 0; r < runs.runs; off += runs.length[r], ++r) {
+    const std::array<std::int64_t, 3>& w = runs.first[r];
+    const int n = runs.length[r];
+    if (exact) {
+      const std::array<double, 3> f{static_cast<double>(w[0]), static_cast<double>(w[1]), static_cast<double>(w[2])};
+      if (unit_q) coordinates_stepped<true>(c0, c1, c2, a, f, d, n, s + off, t + off);
+      else coordinates_stepped<false>(c0, c1, c2, a, f, d, n, s + off, t + off);
+      continue;
     }
-    return;
-  }
-  for (int f = 0; f < n; ++f) {
-    const double w0 = static_cast<double>(w[f][0]), w1 = static_cast<double>(w[f][1]),
-                 w2 = static_cast<double>(w[f][2]);
-    const double v0 = (((0.0 + w0 * c0[0]) + w1 * c1[0]) + w2 * c2[0]) / a;
-    const double v1 = (((0.0 + w0 * c0[1]) + w1 * c1[1]) + w2 * c2[1]) / a;
-    const double q = (((0.0 + w0 * c0[2]) + w1 * c1[2]) + w2 * c2[2]) / a;
-    s[f] = v0 / q;
-    t[f] = v1 / q;
+    for (int i = 0; i < n; ++i) {  // the reference's conversions of the int64 weights
+      double wd[3];
+      for (int k = 0; k < 3; ++k) wd[k] = static_cast<double>(w[k] + i * cov.dwdx[k]);
+      const double v0 = (((0.0 + wd[0] * c0[0]) + wd[1] * c1[0]) + wd[2] * c2[0]) / a;
+      const double v1 = (((0.0 + wd[0] * c0[1]) + wd[1] * c1[1]) + wd[2] * c2[1]) / a;
+      const double q = (((0.0 + wd[0] * c0[2]) + wd[1] * c1[2]) + wd[2] * c2[2]) / a;
+      s[off + i] = v0 / q;
+      t[off + i] = v1 / q;
+    }
   }
 }
 
@@ -106,7 +137,7 @@ void Context::shade_runs_fast(const ShadingState& st, const ShadingPlan& plan,
   sc.lane.resize(static_cast<std::size_t>(longest));
   if (fb_.has_depth())
     for (int r = 0, off = 0; r < runs.runs; off += runs.length[r], ++r)
-      interpolate_code_run(runs.weight[off], cov.dwdx, cov.area, tv[0]->depth, tv[1]->depth, tv[2]->depth,
+      interpolate_code_run(runs.first[r], cov.dwdx, cov.area, tv[0]->depth, tv[1]->depth, tv[2]->depth,
                            runs.length[r], depth + off);
   interpolate_colors(tv, false, cov, runs, flat, sc.lane, out);  // the primary colour, shaded in place
   if (!shade) return;
@@ -135,7 +166,7 @@ void Context::shade_runs_fast(const ShadingState& st, const ShadingPlan& plan,
     // every sum starts from +0, so a ±0 term changes nothing. A NaN never
     // compares equal: it recomputes.)
     if (coords_of < 0 || !same_coords(coords_of, u)) {
-      texture_coordinates(tv, u, cov.area, runs.weight, n, sc.s.data(), sc.t.data());
+      texture_coordinates(tv, u, cov, runs, sc.s.data(), sc.t.data());
       coords_of = u;
     }
     sc.texels[u].resize(4 * N);

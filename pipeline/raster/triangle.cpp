@@ -41,7 +41,8 @@ Edge make_edge(const SnappedVertex& p, const SnappedVertex& q) {
 
 TriangleCoverage rasterize_triangle(const std::array<SnappedVertex, 3>& vin, int S, int clip_x0, int clip_y0,
                                     int clip_x1, int clip_y1,
-                                    const std::function<void(const TriangleCoverage&, const CoverageRun&)>& emit) {
+                                    const std::function<void(const TriangleCoverage&, const CoverageRun&)>& emit,
+                                    RunWeights weights) {
   TriangleCoverage cov;
   for (const SnappedVertex& p : vin)
     if (p.x < -kMaxSnapped || p.x > kMaxSnapped || p.y < -kMaxSnapped || p.y > kMaxSnapped) return cov;
@@ -99,7 +100,8 @@ TriangleCoverage rasterize_triangle(const std::array<SnappedVertex, 3>& vin, int
     if (lo > hi) continue;
     run.y = static_cast<int>(y);
     run.x0 = static_cast<int>(lo);
-    run.weight.resize(static_cast<std::size_t>(hi - lo + 1));
+    run.count = static_cast<int>(hi - lo + 1);
+    run.weight.resize(weights == RunWeights::All ? static_cast<std::size_t>(run.count) : 1);
     std::array<std::int64_t, 3> w{};
     for (int k = 0; k < 3; ++k) w[idx[k]] = step[k] * lo + c0[k];
     std::array<std::int64_t, 3> dw{};

@@ -35,12 +35,16 @@ inline constexpr std::int64_t kMaxSnapped = std::int64_t{1} << 28;
 
 // A row run of covered fragments. weight[i][k] is the edge function opposite
 // vertex k at fragment i's centre: the barycentric weight of vertex k is
-// weight[i][k] / area (all weights >= 0, sum = area).
+// weight[i][k] / area (all weights >= 0, sum = area). With RunWeights::First only
+// weight[0] is filled (weight[i] = weight[0] + i·dwdx, exactly).
 struct CoverageRun {
-  int y = 0;   // window row (relative to the origin)
-  int x0 = 0;  // first fragment (relative to the origin)
+  int y = 0;      // window row (relative to the origin)
+  int x0 = 0;     // first fragment (relative to the origin)
+  int count = 0;  // fragments in the run
   std::vector<std::array<std::int64_t, 3>> weight;
 };
+
+enum class RunWeights : std::uint8_t { All, First };
 
 struct TriangleCoverage {
   std::int64_t area = 0;  // twice the signed area in grid units², made positive; 0 = degenerate
@@ -52,10 +56,12 @@ struct TriangleCoverage {
 // Rasterize one triangle; `clip_*` bound the fragments produced (relative to the
 // origin, half-open: x in [clip_x0, clip_x1), y in [clip_y0, clip_y1)). Calls
 // `emit` with the setup for every non-empty run, bottom row first. Returns the
-// setup (area 0: degenerate, nothing was produced).
+// setup (area 0: degenerate, nothing was produced). `weights`: every fragment's
+// weights, or the first fragment's only (the span path steps them itself).
 TriangleCoverage rasterize_triangle(const std::array<SnappedVertex, 3>& v, int subpixel_bits, int clip_x0,
                                     int clip_y0, int clip_x1, int clip_y1,
-                                    const std::function<void(const TriangleCoverage&, const CoverageRun&)>& emit);
+                                    const std::function<void(const TriangleCoverage&, const CoverageRun&)>& emit,
+                                    RunWeights weights = RunWeights::All);
 
 // A code attribute (colour or depth) at a fragment: the exact barycentric value
 // Σ w_k·k_k / A rounded half up once, floor((2·Σ w_k·k_k + A) / 2A), in 128-bit

@@ -73,8 +73,28 @@ std::vector<Row> reference(const std::array<SnappedVertex, 3>& vin, int S, int c
 std::vector<Row> fast(const std::array<SnappedVertex, 3>& v, int S, int cx0, int cy0, int cx1, int cy1) {
   std::vector<Row> rows;
   rasterize_triangle(v, S, cx0, cy0, cx1, cy1, [&](const TriangleCoverage&, const CoverageRun& run) {
+    REQUIRE(run.count == static_cast<int>(run.weight.size()));
     rows.push_back({run.y, run.x0, run.weight});
   });
+  return rows;
+}
+
+// RunWeights::First (the span path): the first weight only, the count, and
+// weight[i] = weight[0] + i·dwdx rebuilt here from the returned gradients.
+std::vector<Row> first_only(const std::array<SnappedVertex, 3>& v, int S, int cx0, int cy0, int cx1, int cy1) {
+  std::vector<Row> rows;
+  const TriangleCoverage cov = rasterize_triangle(
+      v, S, cx0, cy0, cx1, cy1,
+      [&](const TriangleCoverage&, const CoverageRun& run) {
+        REQUIRE(run.weight.size() == 1);
+        Row row{run.y, run.x0, {}};
+        for (int i = 0; i < run.count; ++i) row.w.push_back(run.weight[0]);
+        rows.push_back(row);
+      },
+      RunWeights::First);
+  for (Row& row : rows)
+    for (std::size_t i = 0; i < row.w.size(); ++i)
+      for (int k = 0; k < 3; ++k) row.w[i][k] += static_cast<std::int64_t>(i) * cov.dwdx[k];
   return rows;
 }
 
@@ -100,6 +120,7 @@ TEST_CASE("fast raster: per-row solved runs == testing every centre, random tria
     const auto want = reference(v, S, cx0, cy0, cx1, cy1);
     INFO("iteration ", it);
     REQUIRE(fast(v, S, cx0, cy0, cx1, cy1) == want);
+    REQUIRE(first_only(v, S, cx0, cy0, cx1, cy1) == want);
     nonempty += !want.empty();
   }
   CHECK(nonempty > 1000);
