@@ -267,6 +267,24 @@ void env_span_channels(const std::array<SpanOp, 4>& op, const std::array<std::ui
   const U m = kM ? kM : m_rt;
   // v = x / m^2 exactly; rounded half up once to the colour width: floor(v·m + 1/2).
   auto round2 = [m](U x) { return static_cast<std::uint16_t>((2 * x + m) / (2 * m)); };
+  // One operation on all four channels that reads no per-channel constant: one
+  // loop over the 4n interleaved codes (the same numbers, channel by channel).
+  if (op[0] == op[1] && op[1] == op[2] && op[2] == op[3]) {
+    const int n4 = 4 * n;
+    switch (op[0]) {
+      case SpanOp::Keep:
+        if (out != prev) std::copy_n(prev, n4, out);
+        return;
+      case SpanOp::Texel: std::copy_n(tex, n4, out); return;
+      case SpanOp::Mul:
+        for (int i = 0; i < n4; ++i) out[i] = round2(U{prev[i]} * tex[i]);
+        return;
+      case SpanOp::AddSat:
+        for (int i = 0; i < n4; ++i) out[i] = static_cast<std::uint16_t>(std::min<U>(U{prev[i]} + tex[i], m));
+        return;
+      default: break;  // Decal and Blend read alpha or the constant: per channel
+    }
+  }
   for (int c = 0; c < 4; ++c) {
     const U k = cc[c];
     switch (op[c]) {
