@@ -1,10 +1,11 @@
 #include "pipeline/texture/texture_sample.h"
 
 #ifdef __SSE4_1__
-#include <smmintrin.h>
+#include <immintrin.h>
 #endif
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -463,16 +464,41 @@ void repeat_axis(const double* s, int n, int size, float two_b, std::int32_t* i0
                  std::uint32_t* w) {
   const auto nf = static_cast<float>(size);
   const std::int32_t mask = size - 1;
-  for (int f = 0; f < n; ++f) {
+  int f = 0;
+#ifdef __AVX2__
+  // Eight fragments at a time, the same IEEE operations in lanes (GCC does not
+  // vectorise the loop below itself under -ftrapping-math): cvtpd_ps rounds to
+  // nearest like the cast, floor_ps is exact, mul and sub stay separate (no FMA),
+  // cvttps truncates like the casts (fl and the weight are integral or in range).
+  {
+    const __m256 vnf = _mm256_set1_ps(nf), vhalf = _mm256_set1_ps(0.5f), vtwo_b = _mm256_set1_ps(two_b);
+    const __m256i vexp = _mm256_set1_epi32(0x7f800000), vmask = _mm256_set1_epi32(mask), vone = _mm256_set1_epi32(1);
+    for (; f + 8 <= n; f += 8) {
+      __m256 x = _mm256_set_m128(_mm256_cvtpd_ps(_mm256_loadu_pd(s + f + 4)), _mm256_cvtpd_ps(_mm256_loadu_pd(s + f)));
+      const __m256i inf_or_nan = _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_castps_si256(x), vexp), vexp);
+      x = _mm256_andnot_ps(_mm256_castsi256_ps(inf_or_nan), x);  // non-finite -> +0
+      x = _mm256_sub_ps(x, _mm256_floor_ps(x));
+      x = _mm256_sub_ps(_mm256_mul_ps(x, vnf), vhalf);
+      const __m256 fl = _mm256_floor_ps(x);
+      const __m256i i = _mm256_cvttps_epi32(fl);
+      _mm256_storeu_si256(reinterpret_cast<__m256i*>(i0 + f), _mm256_and_si256(i, vmask));
+      _mm256_storeu_si256(reinterpret_cast<__m256i*>(i1 + f), _mm256_and_si256(_mm256_add_epi32(i, vone), vmask));
+      _mm256_storeu_si256(reinterpret_cast<__m256i*>(w + f), _mm256_cvttps_epi32(_mm256_mul_ps(_mm256_sub_ps(x, fl), vtwo_b)));
+    }
+  }
+#endif
+  for (; f < n; ++f) {
     float x = static_cast<float>(s[f]);
-    x = std::isfinite(x) ? x : 0.0f;
+    // isfinite(x) ? x : 0, from the exponent bits (no floating compare: a select)
+    x = (std::bit_cast<std::uint32_t>(x) & 0x7f800000u) != 0x7f800000u ? x : 0.0f;
     x = x - std::floor(x);
     x = x * nf - 0.5f;
     const float fl = std::floor(x);
     const auto i = static_cast<std::int32_t>(fl);
     i0[f] = i & mask;
     i1[f] = (i + 1) & mask;
-    w[f] = static_cast<std::uint32_t>((x - fl) * two_b);
+    // (x − fl)·2^B is in [0, 2^B), B <= 16: through int32 (vectorisable), the same value.
+    w[f] = static_cast<std::uint32_t>(static_cast<std::int32_t>((x - fl) * two_b));
   }
 }
 
@@ -486,8 +512,12 @@ void span_linear_repeat(const SpanLevel& L, const double* s, const double* t, in
   const int B2 = 2 * L.B;
   const std::uint32_t half = 1u << (B2 - 1);
   const float two_b = std::ldexp(1.0f, L.B);
-  bool t_const = true;
-  for (int f = 1; f < n && t_const; ++f) t_const = t[f] == t[0];
+  // One t for the span (bit for bit; no early exit, so the loop vectorises):
+  // its axis is then computed once. (±0 differ in bits: computed per fragment.)
+  std::uint64_t t_varies = 0;
+  const auto t0 = std::bit_cast<std::uint64_t>(t[0]);
+  for (int f = 1; f < n; ++f) t_varies |= std::bit_cast<std::uint64_t>(t[f]) ^ t0;
+  const bool t_const = t_varies == 0;
   alignas(32) std::int32_t x0[kAxisChunk], x1[kAxisChunk], y0[kAxisChunk], y1[kAxisChunk];
   alignas(32) std::uint32_t wx[kAxisChunk], wy[kAxisChunk];
   auto texel = [&](std::int32_t i, std::int32_t j) {
