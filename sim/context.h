@@ -586,6 +586,7 @@ class Context {
     std::vector<int> run_y, run_x0, run_length;
     std::vector<std::uint16_t> codes;
     std::vector<std::uint32_t> depth;
+    std::vector<std::uint32_t> pixel;  // the group's fragments' pixel indices (y·width + x)
   };
   SpanScratch span_scratch_;
   // Threads: the pool (rebuilt when threads() changes) and per-band scratch.

@@ -307,6 +307,32 @@ void Context::raster_triangle(const DrawSetup& ds, const std::array<const Window
       sc.codes.resize(4 * static_cast<std::size_t>(runs.count));
       if (has_depth) sc.depth.resize(static_cast<std::size_t>(runs.count));
       shade_runs_fast(st, plan, tv, tcov, runs, flat, shade, sc.codes.data(), has_depth ? sc.depth.data() : nullptr, sc);
+      // The fragment operations for the whole group in one call when every run
+      // lies inside the write rectangle (window and scissor) and the colour is
+      // codes: the triangle's fragments are distinct pixels, so the buffers end
+      // the same as with the runs one by one.
+      const WriteRect& rect = fragment_current_constants_.rect;
+      bool listed = ds.buffers.codes != nullptr;
+      for (int r = 0; r < runs.runs && listed; ++r) {
+        const int y = sc.run_y[static_cast<std::size_t>(r)] + vy, x0 = sc.run_x0[static_cast<std::size_t>(r)] + vx;
+        listed = y >= rect.y0 && y < rect.y1 && x0 >= rect.x0 && x0 + runs.length[r] <= rect.x1;
+      }
+      if (listed) {
+        sc.pixel.resize(static_cast<std::size_t>(runs.count));
+        const auto W = static_cast<std::uint32_t>(fb_.width());
+        for (int r = 0, off = 0; r < runs.runs; off += runs.length[r], ++r) {
+          const auto first = static_cast<std::uint32_t>(sc.run_y[static_cast<std::size_t>(r)] + vy) * W +
+                             static_cast<std::uint32_t>(sc.run_x0[static_cast<std::size_t>(r)] + vx);
+          for (int i = 0; i < runs.length[r]; ++i) sc.pixel[static_cast<std::size_t>(off + i)] = first + static_cast<std::uint32_t>(i);
+          count_fast_run();
+        }
+        if (band < 0) fragments_written_ += static_cast<std::uint64_t>(runs.count);
+        else band_fragments_[static_cast<std::size_t>(band)] += static_cast<std::uint64_t>(runs.count);
+        run_fragment_plan_pixels(*fragment_current_plan_, fragment_current_constants_, sc.codes.data(),
+                                 has_depth ? sc.depth.data() : nullptr, sc.pixel.data(), runs.count, ds.buffers);
+        clear_group();
+        return;
+      }
       for (int r = 0, off = 0; r < runs.runs; off += runs.length[r], ++r) {
         const auto o = static_cast<std::size_t>(off), len = static_cast<std::size_t>(runs.length[r]);
         span.y = sc.run_y[static_cast<std::size_t>(r)] + vy;

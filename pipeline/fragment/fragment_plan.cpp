@@ -160,6 +160,18 @@ namespace {
 
 constexpr int kChunk = 256;  // fragments per pass over the stages (stack-sized mask)
 
+// Where a chunk's fragment j lands: pixel index y·width + x. A span's fragments
+// are consecutive pixels of a row (RowPixels); a primitive's fragments gathered
+// from several rows are listed (ListPixels, run_fragment_plan_pixels).
+struct RowPixels {
+  std::size_t first;
+  std::size_t operator()(int j) const { return first + static_cast<std::size_t>(j); }
+};
+struct ListPixels {
+  const std::uint32_t* pixel;
+  std::size_t operator()(int j) const { return pixel[j]; }
+};
+
 // Float colour stage for one channel (F = float for Float32, double for Float64),
 // per fragment.
 template <class F>
@@ -332,13 +344,14 @@ Interleaved interleaved_op(const FragmentPlanKey& key) {
   return op;
 }
 
-template <Interleaved kOp>
-void color_interleaved(std::uint16_t m, const std::uint16_t* in, std::uint16_t* px, int n, const std::uint16_t* wmask,
-                       const std::uint8_t* alive) {
+template <Interleaved kOp, class Px>
+void color_interleaved(std::uint16_t m, const std::uint16_t* in, std::uint16_t* fb, Px pixel, int n,
+                       const std::uint16_t* wmask, const std::uint8_t* alive) {
   for (int j = 0; j < n; ++j) {
     const std::uint16_t a = alive[j] ? 0xFFFF : 0;
+    std::uint16_t* px = fb + 4 * pixel(j);
     for (int c = 0; c < 4; ++c) {
-      const std::uint16_t s = in[4 * j + c], d = px[4 * j + c];
+      const std::uint16_t s = in[4 * j + c], d = px[c];
       std::uint16_t r;
       if constexpr (kOp == Interleaved::Copy) r = s;
       else if constexpr (kOp == Interleaved::Add) r = static_cast<std::uint16_t>(std::min<std::uint32_t>(std::uint32_t{s} + d, m));
@@ -347,38 +360,38 @@ void color_interleaved(std::uint16_t m, const std::uint16_t* in, std::uint16_t* 
       else if constexpr (kOp == Interleaved::Min) r = std::min(s, d);
       else r = std::max(s, d);
       const std::uint16_t w = a & wmask[c];
-      px[4 * j + c] = static_cast<std::uint16_t>((r & w) | (d & ~w));
+      px[c] = static_cast<std::uint16_t>((r & w) | (d & ~w));
     }
   }
 }
 
-template <std::uint32_t kM>
-void color_stage_fixed(const FragmentPlan& plan, const FragmentConstants& k, const FragmentSpan& sp,
-                       const FragmentBuffers& b, std::size_t row, int start, int n, const std::uint8_t* alive) {
+// The fixed colour stage of a chunk: `in` its colour codes, fragment j at
+// pixel pixel(j) of `fb`.
+template <std::uint32_t kM, class Px>
+void color_stage_fixed(const FragmentPlan& plan, const FragmentConstants& k, const std::uint16_t* in, std::uint16_t* fb,
+                       Px pixel, int n, const std::uint8_t* alive) {
   if (const Interleaved op = interleaved_op(plan.key); op != Interleaved::None) {
-    const std::uint16_t* in = sp.codes.data() + 4 * static_cast<std::size_t>(start);
-    std::uint16_t* px = b.codes + 4 * (row + static_cast<std::size_t>(sp.x0 + start));
     std::uint16_t wmask[4];
     for (int c = 0; c < 4; ++c) wmask[c] = plan.key.channel[c] != ChannelOp::Keep ? 0xFFFF : 0;
     const auto m = static_cast<std::uint16_t>(kM ? kM : k.color_max);
     switch (op) {
-      case Interleaved::Copy: color_interleaved<Interleaved::Copy>(m, in, px, n, wmask, alive); return;
-      case Interleaved::Add: color_interleaved<Interleaved::Add>(m, in, px, n, wmask, alive); return;
-      case Interleaved::Sub: color_interleaved<Interleaved::Sub>(m, in, px, n, wmask, alive); return;
-      case Interleaved::RevSub: color_interleaved<Interleaved::RevSub>(m, in, px, n, wmask, alive); return;
-      case Interleaved::Min: color_interleaved<Interleaved::Min>(m, in, px, n, wmask, alive); return;
-      default: color_interleaved<Interleaved::Max>(m, in, px, n, wmask, alive); return;
+      case Interleaved::Copy: color_interleaved<Interleaved::Copy>(m, in, fb, pixel, n, wmask, alive); return;
+      case Interleaved::Add: color_interleaved<Interleaved::Add>(m, in, fb, pixel, n, wmask, alive); return;
+      case Interleaved::Sub: color_interleaved<Interleaved::Sub>(m, in, fb, pixel, n, wmask, alive); return;
+      case Interleaved::RevSub: color_interleaved<Interleaved::RevSub>(m, in, fb, pixel, n, wmask, alive); return;
+      case Interleaved::Min: color_interleaved<Interleaved::Min>(m, in, fb, pixel, n, wmask, alive); return;
+      default: color_interleaved<Interleaved::Max>(m, in, fb, pixel, n, wmask, alive); return;
     }
   }
   FixedKernel<kM> kern;
   kern.M = k.color_max;
-  const std::uint16_t* in = sp.codes.data() + 4 * static_cast<std::size_t>(start);
-  std::uint16_t* px = b.codes + 4 * (row + static_cast<std::size_t>(sp.x0 + start));
   for (int j = 0; j < n; ++j)
     for (int q = 0; q < 4; ++q) kern.src[q][j] = in[4 * j + q];
   if (plan.read_dst_color)
-    for (int j = 0; j < n; ++j)
-      for (int q = 0; q < 4; ++q) kern.dst[q][j] = px[4 * j + q];
+    for (int j = 0; j < n; ++j) {
+      const std::uint16_t* px = fb + 4 * pixel(j);
+      for (int q = 0; q < 4; ++q) kern.dst[q][j] = px[q];
+    }
   const std::uint32_t* kc = k.blend_color_code.data();
   std::uint32_t out[4][kChunk];
   std::uint16_t wmask[4];
@@ -391,9 +404,10 @@ void color_stage_fixed(const FragmentPlan& plan, const FragmentConstants& k, con
   // Masked store: written channels of surviving fragments only.
   for (int j = 0; j < n; ++j) {
     const std::uint16_t a = alive[j] ? 0xFFFF : 0;
+    std::uint16_t* px = fb + 4 * pixel(j);
     for (int c = 0; c < 4; ++c) {
       const std::uint16_t m = a & wmask[c];
-      px[4 * j + c] = static_cast<std::uint16_t>((static_cast<std::uint16_t>(out[c][j]) & m) | (px[4 * j + c] & ~m));
+      px[c] = static_cast<std::uint16_t>((static_cast<std::uint16_t>(out[c][j]) & m) | (px[c] & ~m));
     }
   }
 }
@@ -401,16 +415,49 @@ void color_stage_fixed(const FragmentPlan& plan, const FragmentConstants& k, con
 void color_stage(const FragmentPlan& plan, const FragmentConstants& k, const FragmentSpan& sp, const FragmentBuffers& b,
                  std::size_t row, int start, int n, const std::uint8_t* alive, Arithmetic arith) {
   switch (arith) {
-    case Arithmetic::Fixed:
-      if (k.color_max == 255) color_stage_fixed<255>(plan, k, sp, b, row, start, n, alive);
-      else color_stage_fixed<0>(plan, k, sp, b, row, start, n, alive);
+    case Arithmetic::Fixed: {
+      const std::uint16_t* in = sp.codes.data() + 4 * static_cast<std::size_t>(start);
+      const RowPixels pixel{row + static_cast<std::size_t>(sp.x0 + start)};
+      if (k.color_max == 255) color_stage_fixed<255>(plan, k, in, b.codes, pixel, n, alive);
+      else color_stage_fixed<0>(plan, k, in, b.codes, pixel, n, alive);
       return;
+    }
     case Arithmetic::Float32:
       for (int c = 0; c < 4; ++c) color_channel_float<float>(plan, k, sp, b, row, start, n, alive, c, arith);
       return;
     case Arithmetic::Float64:
       for (int c = 0; c < 4; ++c) color_channel_float<double>(plan, k, sp, b, row, start, n, alive, c, arith);
       return;
+  }
+}
+
+// Stencil and depth tests with the stencil operations for a chunk: fragment j
+// has depth z[j] and lands on pixel(j); a failing fragment's `alive` is cleared.
+template <class Px>
+void stencil_depth_stage(const FragmentPlanKey& key, const FragmentConstants& k, const std::uint32_t* z,
+                         const FragmentBuffers& b, Px pixel, int n, std::uint8_t* alive) {
+  const std::uint32_t ref = k.stencil_ref, vm = k.stencil_value_mask, wm = k.stencil_writemask, smax = k.stencil_max;
+  const std::uint32_t ref_m = ref & vm;
+  for (int j = 0; j < n; ++j) {
+    if (!alive[j]) continue;
+    const std::size_t p = pixel(j);
+    if (key.stencil) {
+      const std::uint32_t old = b.stencil[p];
+      if (!test_func<std::uint32_t>(key.stencil_func, ref_m, old & vm)) {
+        b.stencil[p] = static_cast<std::uint8_t>(stencil_write(key.sfail, old, ref, smax, wm));
+        alive[j] = 0;
+        continue;
+      }
+    }
+    if (key.depth) {
+      if (!test_func<std::uint32_t>(key.depth_func, z[j], b.depth[p])) {
+        if (key.stencil) b.stencil[p] = static_cast<std::uint8_t>(stencil_write(key.dpfail, b.stencil[p], ref, smax, wm));
+        alive[j] = 0;
+        continue;
+      }
+      if (key.depth_write) b.depth[p] = z[j];
+    }
+    if (key.stencil) b.stencil[p] = static_cast<std::uint8_t>(stencil_write(key.dppass, b.stencil[p], ref, smax, wm));
   }
 }
 
@@ -452,34 +499,33 @@ void run_fragment_plan(const FragmentPlan& plan, const FragmentConstants& k, con
       }
     }
     // Stencil and depth tests with the stencil operations.
-    if (key.stencil || key.depth) {
-      const std::uint32_t ref = k.stencil_ref, vm = k.stencil_value_mask, wm = k.stencil_writemask, smax = k.stencil_max;
-      const std::uint32_t ref_m = ref & vm;
-      for (int j = 0; j < n; ++j) {
-        if (!alive[j]) continue;
-        const std::size_t p = row + static_cast<std::size_t>(sp.x0 + start + j);
-        if (key.stencil) {
-          const std::uint32_t old = b.stencil[p];
-          if (!test_func<std::uint32_t>(key.stencil_func, ref_m, old & vm)) {
-            b.stencil[p] = static_cast<std::uint8_t>(stencil_write(key.sfail, old, ref, smax, wm));
-            alive[j] = 0;
-            continue;
-          }
-        }
-        if (key.depth) {
-          const std::uint32_t z = sp.depth[static_cast<std::size_t>(start + j)];
-          if (!test_func<std::uint32_t>(key.depth_func, z, b.depth[p])) {
-            if (key.stencil) b.stencil[p] = static_cast<std::uint8_t>(stencil_write(key.dpfail, b.stencil[p], ref, smax, wm));
-            alive[j] = 0;
-            continue;
-          }
-          if (key.depth_write) b.depth[p] = z;
-        }
-        if (key.stencil) b.stencil[p] = static_cast<std::uint8_t>(stencil_write(key.dppass, b.stencil[p], ref, smax, wm));
-      }
-    }
+    if (key.stencil || key.depth)
+      stencil_depth_stage(key, k, key.depth ? sp.depth.data() + start : nullptr, b,
+                          RowPixels{row + static_cast<std::size_t>(sp.x0 + start)}, n, alive);
     // Blending / logic op, dithering (identity), masked colour writes.
     if (plan.write_color) color_stage(plan, k, sp, b, row, start, n, alive, key.arith);
+  }
+}
+
+void run_fragment_plan_pixels(const FragmentPlan& plan, const FragmentConstants& k, const std::uint16_t* codes,
+                              const std::uint32_t* depth, const std::uint32_t* pixel, int n, const FragmentBuffers& b) {
+  const FragmentPlanKey& key = plan.key;
+  if (key.nothing || n <= 0) return;
+  if (key.arith != Arithmetic::Fixed) throw std::invalid_argument("run_fragment_plan_pixels: fixed colour only");
+  if (key.depth && depth == nullptr)
+    throw std::invalid_argument("run_fragment_plan_pixels: the depth test is enabled but no depth was given");
+  std::uint8_t alive[kChunk];
+  for (int start = 0; start < n; start += kChunk) {
+    const int m = std::min(kChunk, n - start);
+    const std::uint16_t* in = codes + 4 * static_cast<std::size_t>(start);
+    const ListPixels px{pixel + start};
+    std::fill_n(alive, m, std::uint8_t{1});
+    if (key.alpha_func != 0)  // A_s OP ref
+      for (int j = 0; j < m; ++j) alive[j] = test_func<std::uint32_t>(key.alpha_func, in[4 * j + 3], k.alpha_ref_code);
+    if (key.stencil || key.depth) stencil_depth_stage(key, k, key.depth ? depth + start : nullptr, b, px, m, alive);
+    if (!plan.write_color) continue;
+    if (k.color_max == 255) color_stage_fixed<255>(plan, k, in, b.codes, px, m, alive);
+    else color_stage_fixed<0>(plan, k, in, b.codes, px, m, alive);
   }
 }
 

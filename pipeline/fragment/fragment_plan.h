@@ -125,6 +125,14 @@ FragmentConstants fragment_constants(const FragmentOpsState& s, const FragmentTa
 // and may be empty only when the plan has no depth test (else std::invalid_argument).
 void run_fragment_plan(const FragmentPlan& plan, const FragmentConstants& k, const FragmentSpan& span,
                        const FragmentBuffers& b, int width);
+// run_fragment_plan for n fragments of one primitive at distinct pixels, all
+// inside k.rect, in a fixed profile: fragment i has colour codes codes[4i .. 4i+3],
+// depth depth[i] (may be null without a depth test) and lands on pixel index
+// pixel[i] = y·width + x. No fragment reads another's pixel, so the buffers end
+// as run_fragment_plan leaves them on the same fragments as row spans in any
+// order. Throws std::invalid_argument for float colour or a missing depth.
+void run_fragment_plan_pixels(const FragmentPlan& plan, const FragmentConstants& k, const std::uint16_t* codes,
+                              const std::uint32_t* depth, const std::uint32_t* pixel, int n, const FragmentBuffers& b);
 void run_fragment_ops_full(const FragmentOpsState& s, const FragmentTarget& t, const FragmentSpan& span,
                            const FragmentBuffers& b);
 
