@@ -122,12 +122,43 @@ std::uint32_t interpolate_code(const std::array<std::int64_t, 3>& w, std::int64_
   return static_cast<std::uint32_t>((2 * num + area) / (2 * i128{area}));
 }
 
+// A·kmax at most this: interpolate_code_run's DDA fits int64 (see there).
+constexpr std::int64_t kSmallProduct = std::int64_t{1} << 59;
+
 void interpolate_code_run(const std::array<std::int64_t, 3>& w0, const std::array<std::int64_t, 3>& dwdx,
                           std::int64_t area, std::uint32_t k0, std::uint32_t k1, std::uint32_t k2, int n,
                           std::uint32_t* out) {
   if (n <= 0) return;
   if (k0 == k1 && k1 == k2) {  // Σ w_k = A: floor((2·k·A + A) / 2A) = k, no division needed
     std::fill_n(out, n, k0);
+    return;
+  }
+  const std::uint32_t kmax = std::max({k0, k1, k2});
+  if (area <= kSmallProduct / kmax) {
+    // The same quotients in int64 (hardware division, not __divmodti4): inside the
+    // triangle the weights are >= 0 with Σ w_k = A, so 0 <= Σ w_k·k_k <= A·kmax
+    // < 2^59; for n >= 2, |dwdx_k| = |w_k(1) − w_k(0)| <= A, so |Σ dwdx_k·k_k| <= 3·A·kmax.
+    // Every term below stays under 2^62.
+    const std::int64_t d = 2 * area;
+    const std::int64_t x0 = 2 * (w0[0] * k0 + w0[1] * k1 + w0[2] * k2) + area;  // >= 0
+    std::int64_t q = x0 / d, r = x0 % d;
+    out[0] = static_cast<std::uint32_t>(q);
+    if (n == 1) return;
+    const std::int64_t step = 2 * (dwdx[0] * k0 + dwdx[1] * k1 + dwdx[2] * k2);
+    std::int64_t dq = step / d, dr = step % d;
+    if (dr < 0) {  // floor division: remainder in [0, d)
+      dr += d;
+      --dq;
+    }
+    for (int i = 1; i < n; ++i) {
+      q += dq;
+      r += dr;
+      if (r >= d) {
+        r -= d;
+        ++q;
+      }
+      out[i] = static_cast<std::uint32_t>(q);
+    }
     return;
   }
   __extension__ typedef __int128 i128;

@@ -73,7 +73,8 @@ std::uint32_t interpolate_code(const std::array<std::int64_t, 3>& w, std::int64_
 // dwdx added per step to the right (CoverageRun/TriangleCoverage). The same
 // values, by an exact DDA: the quotient and remainder of (2·num + A) / 2A are
 // carried from fragment to fragment (num grows by Σ dwdx_k·k_k per step), with
-// 128-bit arithmetic only once per run (docs/performance.md). Three equal codes
+// one division per run: in int64 when A·max code <= 2^59, else 128-bit
+// (docs/performance.md). Three equal codes
 // are the run's value everywhere (Σ w_k = A), filled without a division.
 void interpolate_code_run(const std::array<std::int64_t, 3>& w0, const std::array<std::int64_t, 3>& dwdx,
                           std::int64_t area, std::uint32_t k0, std::uint32_t k1, std::uint32_t k2, int n,

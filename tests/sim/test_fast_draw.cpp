@@ -3,6 +3,8 @@
 // identical colour, stencil and depth buffers, in every built-in profile.
 #include <doctest/doctest.h>
 
+#include <algorithm>
+
 #include "fast_scene.h"
 #include "pipeline/raster/triangle.h"
 
@@ -82,11 +84,18 @@ TEST_CASE("fast draw: a planted difference is detected") {
 }
 
 TEST_CASE("fast draw: interpolate_code_run equals interpolate_code on random runs") {
+  // Both forms of the DDA: int64 (A·max code <= 2^59: every small or medium
+  // triangle) and 128-bit (every third triangle: vertices up to 2^27 grid units
+  // and codes up to 2^32 − 1).
   SceneRng r(77);
-  for (int k = 0; k < 2000; ++k) {
+  int wide = 0;
+  for (int k = 0; k < 3000; ++k) {
     // A random triangle, and the run of one of its rows.
     std::array<SnappedVertex, 3> v;
+    const bool huge = k % 3 == 2;
     for (auto& p : v) p = {r.i(-400, 4000), r.i(-400, 4000)};
+    if (huge)
+      for (auto& p : v) p = {std::int64_t{r.i(-(1 << 19), 1 << 19)} << 8, std::int64_t{r.i(-(1 << 19), 1 << 19)} << 8};
     const int S = 4;
     std::vector<CoverageRun> runs;
     const TriangleCoverage cov = rasterize_triangle(v, S, -100, -100, 400, 400, [&](const TriangleCoverage&, const CoverageRun& run) {
@@ -94,8 +103,11 @@ TEST_CASE("fast draw: interpolate_code_run equals interpolate_code on random run
     });
     std::uint32_t k0 = static_cast<std::uint32_t>(r.i(0, 65535)), k1 = static_cast<std::uint32_t>(r.i(0, 65535)),
                   k2 = static_cast<std::uint32_t>(r.i(0, 16777215));
+    if (huge) k2 = 0xFFFFFFFFu - static_cast<std::uint32_t>(r.i(0, 3));
     if (k % 4 == 0) k1 = k2 = k0;  // equal codes: the run is filled without a division
     if (k % 8 == 4) k1 = k0;       // two equal: still the DDA
+    const std::uint32_t kmax = std::max({k0, k1, k2});
+    if (!runs.empty() && kmax > 0 && cov.area > (std::int64_t{1} << 59) / kmax) ++wide;
     for (const CoverageRun& run : runs) {
       std::vector<std::uint32_t> out(run.weight.size());
       interpolate_code_run(run.weight[0], cov.dwdx, cov.area, k0, k1, k2, static_cast<int>(out.size()), out.data());
@@ -103,4 +115,5 @@ TEST_CASE("fast draw: interpolate_code_run equals interpolate_code on random run
         REQUIRE(out[i] == interpolate_code(run.weight[i], cov.area, k0, k1, k2));
     }
   }
+  CHECK(wide > 150);  // (236 with this seed: the 128-bit form is exercised)
 }
