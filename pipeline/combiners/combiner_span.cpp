@@ -232,11 +232,23 @@ struct Kernel {
                    ? static_cast<std::int32_t>(k)
                    : snorm_from_unorm(k, cfg.color_bits, cfg.combiner_bits);
     }
+    // The reference starts every fragment from zeroed registers. Every register is
+    // zeroed once, for the first chunk's lanes (the widest); a later chunk
+    // re-zeroes only the registers a stage writes. The others are rewritten in
+    // every chunk by the set-up below (constants, fog, loaded inputs, spare0.a)
+    // or never written, so they hold the same values as after a full zeroing.
+    bool dest[kRegisterCount] = {};
+    for (const PlannedStage& st : plan.stages)
+      for (const PlannedPortion* p : {&st.rgb, &st.alpha})
+        if (p->run)
+          for (const std::int8_t d : p->dest)
+            if (d >= 0) dest[d] = true;
     for (int first = 0; first < in.count; first += kChunk) {
       const int n = std::min(kChunk, in.count - first);
       const auto f0 = static_cast<std::size_t>(first);
-      for (auto& r : reg)  // the reference starts every fragment from zeroed registers
-        for (auto& comp : r) fill_lanes(comp, n, 0);
+      for (int r = 0; r < kRegisterCount; ++r)
+        if (first == 0 || dest[r])
+          for (auto& comp : reg[r]) fill_lanes(comp, n, 0);
       set_constants(plan.constant_codes, n);
       for (int c = 0; c < 3; ++c) fill_lanes(reg[kFog][c], n, fog[c]);
       if (in.fog_factor) {
