@@ -75,6 +75,15 @@ struct ArgValue {
   SourceLoc where;
 };
 
+// The scalar part of an argument (kind, integer, float), packed: a program keeps
+// these for all its calls in one array (Program::packed), so replaying a call
+// reads a few contiguous bytes instead of each ArgValue's own cache line.
+struct PackedArg {
+  ArgKind kind = ArgKind::Float;
+  std::int64_t i = 0;
+  double f = 0;
+};
+
 // Client memory the GL writes while a trace runs (glReadPixels targets), by image
 // name; one per run, so replays of a Program are independent.
 struct ClientMemory {
@@ -83,13 +92,16 @@ struct ClientMemory {
 
 class Args {
  public:
-  explicit Args(const std::vector<ArgValue>& v, ClientMemory* memory = nullptr) : v_(v), memory_(memory) {}
+  // `packed`: the same arguments' PackedArg, one per element of v (or null).
+  explicit Args(const std::vector<ArgValue>& v, ClientMemory* memory = nullptr, const PackedArg* packed = nullptr)
+      : v_(v), memory_(memory), packed_(packed) {}
   std::size_t size() const { return v_.size(); }
   const ArgValue& operator[](std::size_t k) const { return v_.at(k); }
-  GLenum enum_at(std::size_t k) const { return static_cast<GLenum>(v_.at(k).i); }
-  std::int64_t int_at(std::size_t k) const { return v_.at(k).i; }
-  double float_at(std::size_t k) const { return v_.at(k).f; }
-  bool bool_at(std::size_t k) const { return v_.at(k).i != 0; }
+  ArgKind kind_at(std::size_t k) const { return packed_ && k < v_.size() ? packed_[k].kind : v_.at(k).kind; }
+  GLenum enum_at(std::size_t k) const { return static_cast<GLenum>(int_at(k)); }
+  std::int64_t int_at(std::size_t k) const { return packed_ && k < v_.size() ? packed_[k].i : v_.at(k).i; }
+  double float_at(std::size_t k) const { return packed_ && k < v_.size() ? packed_[k].f : v_.at(k).f; }
+  bool bool_at(std::size_t k) const { return int_at(k) != 0; }
   const std::vector<double>& numbers_at(std::size_t k) const { return v_.at(k).list; }
   // An input image: a file, generated or table image, or client memory written by an
   // earlier call (zeros until then).
@@ -101,6 +113,7 @@ class Args {
  private:
   const std::vector<ArgValue>& v_;
   ClientMemory* memory_;
+  const PackedArg* packed_;
 };
 
 using CommandFn = std::function<void(Context&, const Args&)>;
@@ -144,14 +157,14 @@ constexpr bool accepts(ArgKind k) {
   else return false;
 }
 template <class P>
-decltype(auto) convert(const ArgValue& v) {
+decltype(auto) convert(const Args& a, std::size_t k) {
   using T = std::remove_cvref_t<P>;
-  if constexpr (std::is_same_v<T, bool>) return v.i != 0;
-  else if constexpr (std::is_floating_point_v<T>) return static_cast<T>(v.kind == ArgKind::Int ? static_cast<double>(v.i) : v.f);
-  else if constexpr (std::is_integral_v<T>) return static_cast<T>(v.i);
-  else if constexpr (std::is_same_v<T, const double*>) return static_cast<const double*>(v.list.data());
-  else if constexpr (std::is_same_v<T, std::vector<double>>) return static_cast<const std::vector<double>&>(v.list);
-  else return static_cast<const Image&>(*v.image);
+  if constexpr (std::is_same_v<T, bool>) return a.int_at(k) != 0;
+  else if constexpr (std::is_floating_point_v<T>) return static_cast<T>(a.kind_at(k) == ArgKind::Int ? static_cast<double>(a.int_at(k)) : a.float_at(k));
+  else if constexpr (std::is_integral_v<T>) return static_cast<T>(a.int_at(k));
+  else if constexpr (std::is_same_v<T, const double*>) return static_cast<const double*>(a[k].list.data());
+  else if constexpr (std::is_same_v<T, std::vector<double>>) return static_cast<const std::vector<double>&>(a[k].list);
+  else return static_cast<const Image&>(*a[k].image);
 }
 }  // namespace detail
 
@@ -196,7 +209,7 @@ class CommandTable {
   }
   template <class R, class... P, std::size_t... I>
   static void call(Context& c, R (Context::*fn)(P...), const Args& a, std::index_sequence<I...>) {
-    (c.*fn)(detail::convert<P>(a[I])...);
+    (c.*fn)(detail::convert<P>(a, I)...);
   }
 
   std::map<std::string, CommandDef> defs_;

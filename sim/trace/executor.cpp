@@ -90,7 +90,7 @@ class Runner {
     const Framebuffer& fb = ctx.framebuffer();
     switch (s.kind) {
       case StepKind::Call: {
-        s.def->call(ctx, Args(s.args, &memory_));
+        s.def->call(ctx, Args(s.args, &memory_, p_.packed_args(s)));
         if (s.is_pass()) after_pass(ctx, s);
         else if (o_.explain && s.def->explained) explain_call(ctx, s);
         break;

@@ -88,6 +88,11 @@ class Loader {
       if (!used_sets_.count(name))
         throw TraceError({"--set", 1, 1}, std::string("the trace has no parameter `") + name + "`", name + "=" + value);
     freeze();
+    for (Step& st : prog_.steps) {  // the scalar arguments of every call, contiguous
+      if (st.kind != StepKind::Call) continue;
+      st.packed_at = static_cast<std::uint32_t>(prog_.packed.size());
+      for (const ArgValue& v : st.args) prog_.packed.push_back({v.kind, v.i, v.f});
+    }
     return std::move(prog_);
   }
 

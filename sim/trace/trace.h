@@ -28,10 +28,13 @@ inline constexpr long long kMaxTraceLines = 1000000;         // all files togeth
 inline constexpr std::uintmax_t kMaxTraceTotalBytes = 64u << 20;  // all files together, includes expanded
 inline constexpr int kMaxTableWidth = 65536;
 
+inline constexpr std::uint32_t kNotPacked = 0xFFFFFFFFu;
+
 enum class StepKind { Call, Dump, DumpImage, Hash, ExpectHash, ExpectPixel, ExpectImage, ExpectError, ExpectEnabled };
 
 struct Step {
   StepKind kind = StepKind::Call;
+  std::uint32_t packed_at = kNotPacked;  // Call: its arguments' PackedArg in Program::packed
   SourceLoc where;        // the command's first token
   std::string line_text;  // the whole line, for messages
   std::string name;       // the command as written: "glClear", "dump", "expect", ...
@@ -75,7 +78,12 @@ struct Program {
   std::vector<Param> params;
   std::vector<Resource> resources;
   std::vector<Step> steps;
+  std::vector<PackedArg> packed;   // the calls' scalar arguments, in step order (Step::packed_at)
   std::vector<std::string> files;  // every trace file read, in order
+  // The PackedArg of step s's arguments, or null (not a call, or not packed).
+  const PackedArg* packed_args(const Step& s) const {
+    return s.packed_at != kNotPacked && s.packed_at + s.args.size() <= packed.size() ? packed.data() + s.packed_at : nullptr;
+  }
   int pass_count() const;
 };
 
