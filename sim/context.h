@@ -378,8 +378,23 @@ class Context {
   // ==== [issue 6] traces: hooks ====
   // Worker threads a stage may use (at least 1; `ffsim replay --threads N`).
   // Results never depend on it: the trace tests compare hashes for 1 and 2 threads.
-  void set_threads(int n) { threads_ = n < 1 ? 1 : n; }
+  void set_threads(int n) {
+    flush_deferred();
+    threads_ = n < 1 ? 1 : n;
+  }
   int threads() const { return threads_; }
+  // Deferred draws (threads > 1, no probe): a glEnd leaves its batch of
+  // triangles pending, so the next glEnd's polygons join it and the pool splits
+  // one large batch instead of one per strip (docs/performance.md). The caller
+  // that turns this on promises to call flush_deferred() before anything other
+  // than glBegin, glEnd and vertex data (current colour, texture coordinates,
+  // normal, vertex) reaches the Context, and before reading the framebuffer: the
+  // trace executor does (CommandDef::vertex_data). Off by default.
+  void set_defer_draws(bool on) {
+    if (!on) flush_deferred();
+    defer_draws_ = on;
+  }
+  void flush_deferred();
   // Single-pixel tracing (`--probe X,Y`, sim/probe.h): stages record what they did
   // at the probed pixel; the trace executor prints and clears the records per pass.
   ProbeLog& probe() { return probe_; }
@@ -567,6 +582,12 @@ class Context {
 
   // ==== [issue 6] state ====
   int threads_ = 1;
+  // set_defer_draws: the pending batch's state and set-up (the state cannot
+  // change while it is pending; the next glEnd recomputes the same).
+  bool defer_draws_ = false, batch_pending_ = false;
+  ShadingState deferred_st_;
+  ShadingPlan deferred_plan_;
+  DrawSetup deferred_ds_;
   ProbeLog probe_;
   std::uint64_t fragments_written_ = 0;
 

@@ -58,13 +58,21 @@ void Context::end() {
   std::vector<ClipVertex> v;
   v.swap(begin_vertices_);
   const std::size_t n = v.size();
-  const ShadingState st = shading_state();
-  const ShadingPlan plan = shading_plan(st);
+  // Deferred (set_defer_draws): the state lives in members, where the pending
+  // batch's set-up points; it equals the pending batch's (only vertex data since).
+  const bool defer = defer_draws_ && threads_ > 1 && !probe_.enabled() && !on_explain_;
+  if (!defer) flush_deferred();
+  ShadingState st_here;
+  ShadingPlan plan_here;
+  ShadingState& st = defer ? deferred_st_ : st_here;
+  ShadingPlan& plan = defer ? deferred_plan_ : plan_here;
+  st = shading_state();
+  plan = shading_plan(st);
   if (on_explain_ && n >= 3) on_explain_(ffsim::explain_shading(st, plan));
   const DrawSetup ds = draw_setup(st, plan);
   // One thread: each polygon is drawn at once. Threads: the polygons are prepared
   // into batches, each rasterized in row bands (sim/draw.cpp, docs/performance.md).
-  if (ds.bands) clear_batch();
+  if (ds.bands && !batch_pending_) clear_batch();
   auto draw_polygon = [&](std::vector<ClipVertex> poly, std::size_t provoking) {
     if (ds.bands) batch_polygon(std::move(poly), provoking, ds);
     else this->draw_polygon(std::move(poly), provoking, ds);
@@ -94,7 +102,18 @@ void Context::end() {
       break;
     default: break;
   }
-  if (ds.bands) flush_batch(ds);
+  if (ds.bands && defer) {  // drawn by a later glEnd's flush or flush_deferred()
+    deferred_ds_ = ds;
+    batch_pending_ = !batch_triangles_.empty();
+  } else if (ds.bands) {
+    flush_batch(ds);
+  }
+}
+
+void Context::flush_deferred() {
+  if (!batch_pending_) return;
+  batch_pending_ = false;
+  flush_batch(deferred_ds_);
 }
 
 ClipVertex Context::make_vertex(const glm::dvec4& object) const {

@@ -134,7 +134,8 @@ void interpolate_code_run(const std::array<std::int64_t, 3>& w0, const std::arra
     return;
   }
   const std::uint32_t kmax = std::max({k0, k1, k2});
-  if (area <= kSmallProduct / kmax) {
+  __extension__ typedef unsigned __int128 u128;
+  if (static_cast<u128>(area) * kmax <= static_cast<u128>(kSmallProduct)) {  // (area > 0)
     // The same quotients in int64 (hardware division, not __divmodti4): inside the
     // triangle the weights are >= 0 with Σ w_k = A, so 0 <= Σ w_k·k_k <= A·kmax
     // < 2^59; for n >= 2, |dwdx_k| = |w_k(1) − w_k(0)| <= A, so |Σ dwdx_k·k_k| <= 3·A·kmax.
@@ -150,13 +151,12 @@ void interpolate_code_run(const std::array<std::int64_t, 3>& w0, const std::arra
       dr += d;
       --dq;
     }
-    for (int i = 1; i < n; ++i) {
+    for (int i = 1; i < n; ++i) {  // branch free: the carry is data-dependent
       q += dq;
       r += dr;
-      if (r >= d) {
-        r -= d;
-        ++q;
-      }
+      const std::int64_t carry = r >= d;
+      r -= carry * d;
+      q += carry;
       out[i] = static_cast<std::uint32_t>(q);
     }
     return;

@@ -134,12 +134,17 @@ struct CommandDef {
   CommandFn call;
   bool is_pass = false;  // writes the framebuffer: a pass boundary
   bool explained = false;  // not a pass, but --explain reports after it (texture uploads)
+  // glBegin, glEnd and the vertex-data calls between them: they change no state a
+  // draw reads, so a deferred draw (Context::set_defer_draws) may stay pending
+  // across them; before any other step the executor flushes it.
+  bool vertex_data = false;
   CheckFn check;         // optional load-time check of the evaluated arguments
   OutShapeFn out_shape;  // required when an argument is an OutImage
   CommandDef& pass_boundary() { is_pass = true; return *this; }
   CommandDef& pass() { return pass_boundary(); }
   CommandDef& checked(CheckFn f) { check = std::move(f); return *this; }
   CommandDef& explain_after() { explained = true; return *this; }
+  CommandDef& vertex_data_call() { vertex_data = true; return *this; }
   CommandDef& writes_image(OutShapeFn f) { out_shape = std::move(f); return *this; }
   std::string signature() const;  // "glClearColor red green blue alpha"
 };

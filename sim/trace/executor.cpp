@@ -54,8 +54,12 @@ class Runner {
     try {
       ctx.set_threads(o_.threads);
       if (o_.probe) ctx.probe().set_target(o_.probe->first, o_.probe->second);
+      // Strips of one state drawn as one batch with threads (Context::set_defer_draws):
+      // the pending draw is flushed before every step that is not vertex data.
+      ctx.set_defer_draws(o_.threads > 1 && !o_.probe && !o_.explain && !o_.dump_each_pass);
       for (std::size_t k = 0; k < p_.steps.size() && r_.ok; ++k) {
         const Step& s = p_.steps[k];
+        if (!(s.kind == StepKind::Call && s.def->vertex_data)) ctx.flush_deferred();
         if (s.kind != StepKind::ExpectError) flush_errors();
         if (!r_.ok) break;
         if (!o_.outputs && s.kind != StepKind::Call && s.kind != StepKind::ExpectError) continue;
@@ -64,6 +68,7 @@ class Runner {
         ++r_.steps;
         collect_errors(ctx);
       }
+      ctx.set_defer_draws(false);  // draws what is pending
       flush_errors();
       if (r_.ok && o_.outputs) {
         const Framebuffer& fb = ctx.framebuffer();

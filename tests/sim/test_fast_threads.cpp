@@ -247,7 +247,9 @@ TEST_CASE("fast threads: overlapping triangles of one batch keep their order in 
 
 TEST_CASE("fast threads: the terrain trace is identical at 1 and 2 threads and its strips are split") {
   // kautz-geforce-aa's terrain (scene 1): 30 triangle strips of 60 small
-  // triangles per pass, combiners, blending, depth test.
+  // triangles per pass, combiners, blending, depth test. With threads the
+  // executor defers draws (Context::set_defer_draws): the strips of one pass join
+  // one batch, so a pass is split once, not once per strip.
   trace::LoadOptions lo;
 #ifdef FFSIM_SANITIZE
   lo.sets = {{"scene", "1"}, {"tw", "256"}, {"th", "192"}, {"rays", "16"}};
@@ -256,7 +258,7 @@ TEST_CASE("fast threads: the terrain trace is identical at 1 and 2 threads and i
 #endif
   const trace::Program prog = trace::load_trace_file(std::string(FFSIM_SOURCE_DIR) + "/traces/kautz-geforce-aa.trace", lo);
   std::string hashes[2];
-  std::uint64_t fragments[2] = {0, 0}, batches[2] = {0, 0};
+  std::uint64_t fragments[2] = {0, 0}, batches[2] = {0, 0}, triangles[2] = {0, 0};
   for (int threads : {1, 2}) {
     Context ctx(prog.profile, prog.width, prog.height);
     trace::RunOptions ro;
@@ -271,6 +273,7 @@ TEST_CASE("fast threads: the terrain trace is identical at 1 and 2 threads and i
     for (const auto& [b, v] : r.final_hashes) h.append(b).append("=").append(v).append(" ");
     fragments[threads - 1] = ctx.fragments_written();
     batches[threads - 1] = ctx.split_batches();
+    triangles[threads - 1] = ctx.split_triangles();
   }
   CHECK(hashes[1] == hashes[0]);
   CHECK(fragments[1] == fragments[0]);
@@ -278,4 +281,7 @@ TEST_CASE("fast threads: the terrain trace is identical at 1 and 2 threads and i
   MESSAGE("terrain ", prog.width, "x", prog.height, ": ", batches[1], " batches split at 2 threads, ", fragments[0],
           " fragments");
   CHECK(batches[1] > 0);
+  // Merged strips: a strip alone is 60 triangles; the deferred batches of a pass
+  // hold all 30 strips (1800 triangles, under the 2048 cap).
+  CHECK(triangles[1] > 1000 * batches[1]);
 }
