@@ -291,6 +291,16 @@ void Context::raster_triangle(const DrawSetup& ds, const std::array<const Window
     // group closes at kGroupFragments fragments so its arrays stay in cache; a
     // run of kLongRun fragments or more is shaded on its own, in place.
     constexpr int kGroupFragments = 512, kLongRun = 64;
+    // A run's framebuffer lines (colour, depth) are requested before it is
+    // shaded and arrive meanwhile: the fragment operations waited on these loads.
+    auto prefetch_run = [&](int y, int x0, int len) {
+      if (!ds.buffers.codes || y < 0 || y >= fb_.height() || x0 < 0 || x0 + len > fb_.width()) return;
+      const std::size_t p0 = static_cast<std::size_t>(y) * static_cast<std::size_t>(fb_.width()) + static_cast<std::size_t>(x0);
+      const std::size_t p1 = p0 + static_cast<std::size_t>(len) - 1;
+      for (std::size_t p = p0; p < p1 + 8; p += 8) __builtin_prefetch(ds.buffers.codes + 4 * std::min(p, p1), 1);
+      if (ds.buffers.depth)
+        for (std::size_t p = p0; p < p1 + 16; p += 16) __builtin_prefetch(ds.buffers.depth + std::min(p, p1), 1);
+    };
     TriangleCoverage tcov;
     int group_fragments = 0;
     auto clear_group = [&] {
@@ -306,18 +316,8 @@ void Context::raster_triangle(const DrawSetup& ds, const std::array<const Window
                           group_fragments};
       sc.codes.resize(4 * static_cast<std::size_t>(runs.count));
       if (has_depth) sc.depth.resize(static_cast<std::size_t>(runs.count));
-      // The group's framebuffer lines are requested now and arrive while it is
-      // shaded (the fragment operations below were waiting on these loads).
-      if (ds.buffers.codes)
-        for (int r = 0; r < runs.runs; ++r) {
-          const int y = sc.run_y[static_cast<std::size_t>(r)] + vy, x0 = sc.run_x0[static_cast<std::size_t>(r)] + vx;
-          if (y < 0 || y >= fb_.height() || x0 < 0 || x0 + runs.length[r] > fb_.width()) continue;
-          const std::size_t p0 = static_cast<std::size_t>(y) * static_cast<std::size_t>(fb_.width()) + static_cast<std::size_t>(x0);
-          const std::size_t p1 = p0 + static_cast<std::size_t>(runs.length[r]) - 1;
-          for (std::size_t p = p0; p < p1 + 8; p += 8) __builtin_prefetch(ds.buffers.codes + 4 * std::min(p, p1), 1);
-          if (ds.buffers.depth)
-            for (std::size_t p = p0; p < p1 + 16; p += 16) __builtin_prefetch(ds.buffers.depth + std::min(p, p1), 1);
-        }
+      for (int r = 0; r < runs.runs; ++r)
+        prefetch_run(sc.run_y[static_cast<std::size_t>(r)] + vy, sc.run_x0[static_cast<std::size_t>(r)] + vx, runs.length[r]);
       shade_runs_fast(st, plan, tv, tcov, runs, flat, shade, sc.codes.data(), has_depth ? sc.depth.data() : nullptr, sc);
       // The fragment operations for the whole group in one call when every run
       // lies inside the write rectangle (window and scissor) and the colour is
@@ -366,6 +366,7 @@ void Context::raster_triangle(const DrawSetup& ds, const std::array<const Window
         span.y = run.y + vy;
         span.x0 = run.x0 + vx;
         span.count = n;
+        prefetch_run(span.y, span.x0, n);
         span.codes.resize(4 * static_cast<std::size_t>(n));
         if (has_depth) span.depth.resize(static_cast<std::size_t>(n));
         const FastRuns one{run.weight.data(), &n, 1, n};
