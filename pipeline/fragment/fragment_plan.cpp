@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <type_traits>
 #include <stdexcept>
+#include <type_traits>
 #include <vector>
 
 #include "pipeline/fragment/test_func.h"
@@ -344,6 +344,24 @@ Interleaved interleaved_op(const FragmentPlanKey& key) {
   return op;
 }
 
+// One operation of Interleaved on two codes (the same values as FixedKernel::channel).
+template <Interleaved kOp>
+inline std::uint16_t interleaved_value(std::uint16_t m, std::uint16_t s, std::uint16_t d) {
+  if constexpr (kOp == Interleaved::Copy) return s;
+  else if constexpr (kOp == Interleaved::Add) return static_cast<std::uint16_t>(std::min<std::uint32_t>(std::uint32_t{s} + d, m));
+  else if constexpr (kOp == Interleaved::Sub) return static_cast<std::uint16_t>(s > d ? s - d : 0);
+  else if constexpr (kOp == Interleaved::RevSub) return static_cast<std::uint16_t>(d > s ? d - s : 0);
+  else if constexpr (kOp == Interleaved::Min) return std::min(s, d);
+  else return std::max(s, d);
+}
+
+// Every fragment survives (no alpha, stencil or depth test) and every channel is
+// written, on consecutive pixels: the operation on the 4n codes, nothing masked.
+template <Interleaved kOp>
+void color_interleaved_all(std::uint16_t m, const std::uint16_t* in, std::uint16_t* px, int codes) {
+  for (int i = 0; i < codes; ++i) px[i] = interleaved_value<kOp>(m, in[i], px[i]);
+}
+
 template <Interleaved kOp, class Px>
 void color_interleaved(std::uint16_t m, const std::uint16_t* in, std::uint16_t* fb, Px pixel, int n,
                        const std::uint16_t* wmask, const std::uint8_t* alive) {
@@ -351,14 +369,8 @@ void color_interleaved(std::uint16_t m, const std::uint16_t* in, std::uint16_t* 
     const std::uint16_t a = alive[j] ? 0xFFFF : 0;
     std::uint16_t* px = fb + 4 * pixel(j);
     for (int c = 0; c < 4; ++c) {
-      const std::uint16_t s = in[4 * j + c], d = px[c];
-      std::uint16_t r;
-      if constexpr (kOp == Interleaved::Copy) r = s;
-      else if constexpr (kOp == Interleaved::Add) r = static_cast<std::uint16_t>(std::min<std::uint32_t>(std::uint32_t{s} + d, m));
-      else if constexpr (kOp == Interleaved::Sub) r = static_cast<std::uint16_t>(s > d ? s - d : 0);
-      else if constexpr (kOp == Interleaved::RevSub) r = static_cast<std::uint16_t>(d > s ? d - s : 0);
-      else if constexpr (kOp == Interleaved::Min) r = std::min(s, d);
-      else r = std::max(s, d);
+      const std::uint16_t d = px[c];
+      const std::uint16_t r = interleaved_value<kOp>(m, in[4 * j + c], d);
       const std::uint16_t w = a & wmask[c];
       px[c] = static_cast<std::uint16_t>((r & w) | (d & ~w));
     }
@@ -374,6 +386,20 @@ void color_stage_fixed(const FragmentPlan& plan, const FragmentConstants& k, con
     std::uint16_t wmask[4];
     for (int c = 0; c < 4; ++c) wmask[c] = plan.key.channel[c] != ChannelOp::Keep ? 0xFFFF : 0;
     const auto m = static_cast<std::uint16_t>(kM ? kM : k.color_max);
+    if constexpr (std::is_same_v<Px, RowPixels>) {
+      const FragmentPlanKey& key = plan.key;
+      if (key.alpha_func == 0 && !key.stencil && !key.depth && (wmask[0] & wmask[1] & wmask[2] & wmask[3])) {
+        std::uint16_t* px = fb + 4 * pixel(0);
+        switch (op) {
+          case Interleaved::Copy: std::copy_n(in, 4 * n, px); return;
+          case Interleaved::Add: color_interleaved_all<Interleaved::Add>(m, in, px, 4 * n); return;
+          case Interleaved::Sub: color_interleaved_all<Interleaved::Sub>(m, in, px, 4 * n); return;
+          case Interleaved::RevSub: color_interleaved_all<Interleaved::RevSub>(m, in, px, 4 * n); return;
+          case Interleaved::Min: color_interleaved_all<Interleaved::Min>(m, in, px, 4 * n); return;
+          default: color_interleaved_all<Interleaved::Max>(m, in, px, 4 * n); return;
+        }
+      }
+    }
     switch (op) {
       case Interleaved::Copy: color_interleaved<Interleaved::Copy>(m, in, fb, pixel, n, wmask, alive); return;
       case Interleaved::Add: color_interleaved<Interleaved::Add>(m, in, fb, pixel, n, wmask, alive); return;
