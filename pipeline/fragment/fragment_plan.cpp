@@ -459,9 +459,44 @@ void color_stage(const FragmentPlan& plan, const FragmentConstants& k, const Fra
 
 // Stencil and depth tests with the stencil operations for a chunk: fragment j
 // has depth z[j] and lands on pixel(j); a failing fragment's `alive` is cleared.
+// The depth test alone (no stencil), for one comparison chosen outside the loop:
+// branch free, so the depth loads of a chunk overlap instead of waiting behind
+// mispredicted test results. A failing or dead fragment rewrites the stored
+// depth unchanged (its own pixel: no other fragment of the chunk touches it).
+template <class Px, class Cmp>
+void depth_only(bool write, const std::uint32_t* z, std::uint32_t* depth, Px pixel, int n, std::uint8_t* alive, Cmp cmp) {
+  for (int j = 0; j < n; ++j) {
+    const std::size_t p = pixel(j);
+    const std::uint32_t zb = depth[p];
+    const bool pass = alive[j] && cmp(z[j], zb);
+    alive[j] = pass;
+    if (write) depth[p] = pass ? z[j] : zb;
+  }
+}
+
+template <class Px>
+void depth_only_stage(GLenum func, bool write, const std::uint32_t* z, std::uint32_t* depth, Px pixel, int n,
+                      std::uint8_t* alive) {
+  switch (func) {  // test_func's table (test_func.h)
+    case gl::NEVER: std::fill_n(alive, n, std::uint8_t{0}); return;
+    case gl::LESS: return depth_only(write, z, depth, pixel, n, alive, [](std::uint32_t a, std::uint32_t b) { return a < b; });
+    case gl::EQUAL: return depth_only(write, z, depth, pixel, n, alive, [](std::uint32_t a, std::uint32_t b) { return a == b; });
+    case gl::LEQUAL: return depth_only(write, z, depth, pixel, n, alive, [](std::uint32_t a, std::uint32_t b) { return a <= b; });
+    case gl::GREATER: return depth_only(write, z, depth, pixel, n, alive, [](std::uint32_t a, std::uint32_t b) { return a > b; });
+    case gl::NOTEQUAL: return depth_only(write, z, depth, pixel, n, alive, [](std::uint32_t a, std::uint32_t b) { return a != b; });
+    case gl::GEQUAL: return depth_only(write, z, depth, pixel, n, alive, [](std::uint32_t a, std::uint32_t b) { return a >= b; });
+    case gl::ALWAYS: return depth_only(write, z, depth, pixel, n, alive, [](std::uint32_t, std::uint32_t) { return true; });
+    default: std::fill_n(alive, n, std::uint8_t{0}); return;
+  }
+}
+
 template <class Px>
 void stencil_depth_stage(const FragmentPlanKey& key, const FragmentConstants& k, const std::uint32_t* z,
                          const FragmentBuffers& b, Px pixel, int n, std::uint8_t* alive) {
+  if (!key.stencil) {
+    depth_only_stage(key.depth_func, key.depth_write, z, b.depth, pixel, n, alive);
+    return;
+  }
   const std::uint32_t ref = k.stencil_ref, vm = k.stencil_value_mask, wm = k.stencil_writemask, smax = k.stencil_max;
   const std::uint32_t ref_m = ref & vm;
   for (int j = 0; j < n; ++j) {
