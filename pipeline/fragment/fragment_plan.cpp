@@ -6,6 +6,10 @@
 #include <type_traits>
 #include <vector>
 
+#ifdef __SSE4_1__
+#include <immintrin.h>
+#endif
+
 #include "pipeline/fragment/test_func.h"
 #include "pipeline/fragment/write_mask.h"
 #include "pipeline/number/unorm.h"
@@ -362,9 +366,40 @@ void color_interleaved_all(std::uint16_t m, const std::uint16_t* in, std::uint16
   for (int i = 0; i < codes; ++i) px[i] = interleaved_value<kOp>(m, in[i], px[i]);
 }
 
+#ifdef __SSE4_1__
+// interleaved_value on a pixel's four codes in 16-bit lanes: ADD as
+// min(adds(s, d), M) (a sum above 65535 saturates there, and min gives M either
+// way), the subtractions as saturating subtractions (max(·, 0)), MIN/MAX lane-wise.
+template <Interleaved kOp>
+inline __m128i interleaved_lanes(__m128i m, __m128i s, __m128i d) {
+  if constexpr (kOp == Interleaved::Copy) return s;
+  else if constexpr (kOp == Interleaved::Add) return _mm_min_epu16(_mm_adds_epu16(s, d), m);
+  else if constexpr (kOp == Interleaved::Sub) return _mm_subs_epu16(s, d);
+  else if constexpr (kOp == Interleaved::RevSub) return _mm_subs_epu16(d, s);
+  else if constexpr (kOp == Interleaved::Min) return _mm_min_epu16(s, d);
+  else return _mm_max_epu16(s, d);
+}
+#endif
+
 template <Interleaved kOp, class Px>
 void color_interleaved(std::uint16_t m, const std::uint16_t* in, std::uint16_t* fb, Px pixel, int n,
                        const std::uint16_t* wmask, const std::uint8_t* alive) {
+#ifdef __SSE4_1__
+  {  // a pixel (four 16-bit codes) at a time in the low 64 bits of a register
+    const __m128i vm = _mm_set1_epi16(static_cast<std::int16_t>(m));
+    const __m128i vw = _mm_setr_epi16(static_cast<std::int16_t>(wmask[0]), static_cast<std::int16_t>(wmask[1]),
+                                      static_cast<std::int16_t>(wmask[2]), static_cast<std::int16_t>(wmask[3]), 0, 0, 0, 0);
+    for (int j = 0; j < n; ++j) {
+      std::uint16_t* px = fb + 4 * pixel(j);
+      const __m128i d = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(px));
+      const __m128i s = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(in + 4 * j));
+      const __m128i w = _mm_and_si128(vw, _mm_set1_epi16(static_cast<std::int16_t>(-static_cast<int>(alive[j] != 0))));
+      const __m128i r = interleaved_lanes<kOp>(vm, s, d);
+      _mm_storel_epi64(reinterpret_cast<__m128i*>(px), _mm_or_si128(_mm_and_si128(r, w), _mm_andnot_si128(w, d)));
+    }
+    return;
+  }
+#endif
   for (int j = 0; j < n; ++j) {
     const std::uint16_t a = alive[j] ? 0xFFFF : 0;
     std::uint16_t* px = fb + 4 * pixel(j);

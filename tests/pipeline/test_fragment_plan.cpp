@@ -380,11 +380,15 @@ TEST_CASE("plan vs full path: the equivalence test detects a wrong plan") {
 TEST_CASE("plan vs full path: blend (ONE, ONE) add, subtract and reverse subtract on every pair of 8-bit codes") {
   // The planned path computes these as min(s + d, M), max(s − d, 0) and
   // max(d − s, 0) (fragment_plan.cpp); the full path evaluates blend_code's
-  // rnd(clamp01((s·M ± d·M) / M²)·M). Every (s, d) pair in every channel, and a
-  // 12-bit target (colour maximum not known at compile time) on a sample.
+  // rnd(clamp01((s·M ± d·M) / M²)·M). Every (s, d) pair in every channel, and
+  // 12- and 16-bit targets (colour maximum not known at compile time; 16 bits:
+  // sums above 65535) on a sample; with all channels written (the unmasked
+  // loop) and with alpha masked off (the per-pixel masked form).
+  for (const bool alpha_written : {true, false})
   for (const GLenum eq : {gl::FUNC_ADD, gl::FUNC_SUBTRACT, gl::FUNC_REVERSE_SUBTRACT}) {
     FragmentOpsState s;
     s.blend = {true, gl::ONE, gl::ONE, eq, {}};
+    s.color_mask = {true, true, true, alpha_written};
     Buffers b(target8(256, 256, 0, 0));
     for (int y = 0; y < 256; ++y)
       for (int x = 0; x < 256; ++x)
@@ -400,14 +404,18 @@ TEST_CASE("plan vs full path: blend (ONE, ONE) add, subtract and reverse subtrac
     };
     for (const auto& [x, y] : {std::pair{0, 0}, {200, 100}, {100, 200}, {255, 255}, {17, 254}})
       CHECK(b.code(x, y, 0) == expect(y, x));
-    Buffers w({64, 4, Arithmetic::Fixed, 12, 0, 0});
-    std::mt19937 rng(static_cast<unsigned>(eq));
-    for (auto& k : w.codes) k = static_cast<std::uint16_t>(rng() % 4096);
-    for (int y = 0; y < 4; ++y) {
-      std::vector<std::array<std::uint16_t, 4>> src(64);
-      for (auto& k : src)
-        for (auto& v : k) v = static_cast<std::uint16_t>(rng() % 4096);
-      w = run_both(s, w, span_codes(y, 0, src));
+    for (const int bits : {12, 16}) {
+      Buffers w({64, 4, Arithmetic::Fixed, bits, 0, 0});
+      std::mt19937 rng(static_cast<unsigned>(eq) + static_cast<unsigned>(bits));
+      const std::uint32_t M = (1u << bits) - 1;
+      auto code = [&] { return static_cast<std::uint16_t>(rng() % 4 == 0 ? M - rng() % 3 : rng() % (M + 1)); };
+      for (auto& k : w.codes) k = code();
+      for (int y = 0; y < 4; ++y) {
+        std::vector<std::array<std::uint16_t, 4>> src(64);
+        for (auto& k : src)
+          for (auto& v : k) v = code();
+        w = run_both(s, w, span_codes(y, 0, src));
+      }
     }
   }
 }
