@@ -150,74 +150,84 @@ struct Kernel {
         if (const int d = st.alpha.dest[static_cast<std::size_t>(o)]; d >= 0) copy_lanes(alpha[o][0], n, reg[d][3]);
   }
 
-  // final_combiner_fixed<Acc> over the chunk, variable by variable.
+  // final_combiner_fixed<Acc> over the chunk, variable by variable. F: the lanes'
+  // type. Every lane value is at most 2·M² (units of 1/M², spare0 + secondary
+  // before its clamp), so a compile-time M <= 2047 keeps them in int32 (the
+  // compiler vectorises them); the RGB sums go to Acc.
+  using F = std::conditional_t<kM != 0 && kM <= 2047, std::int32_t, std::int64_t>;
   void final(int n, std::uint16_t* out) const {
     const PlannedFinal& f = plan.final;
     const std::int32_t Mi = M();
-    const std::int64_t m = Mi, m2 = m * m;
+    const F m = Mi, m2 = m * m;
     const int color_bits = plan.config.color_bits;
     const Acc nmax = (Acc{1} << color_bits) - 1;
     const Acc m4 = Acc{m2} * m2;
     // final_reg: UNSIGNED_INVERT 1 − clamp01, UNSIGNED_IDENTITY max(0, ·), in units of 1/M.
-    auto final_reg = [&](const PlannedVar& v, int lane, std::int64_t* r) {
+    auto final_reg = [&](const PlannedVar& v, int lane, int count, F* r) {
       const std::int32_t* c = reg[v.reg][v.comp[static_cast<std::size_t>(lane)]];
       if (v.mapping == Mapping::UnsignedInvert)
-        for (int i = 0; i < n; ++i) r[i] = Mi - std::clamp(c[i], 0, Mi);
+        for (int i = 0; i < count; ++i) r[i] = Mi - std::clamp(c[i], 0, Mi);
       else
-        for (int i = 0; i < n; ++i) r[i] = std::max(c[i], 0);
+        for (int i = 0; i < count; ++i) r[i] = std::max(c[i], 0);
     };
-    std::int64_t ef[3][kChunk], sps[3][kChunk], e[kChunk], fv[kChunk];
+    F ef[3][kChunk], sps[3][kChunk], e[kChunk], fv[kChunk];
     if (f.need_ef)
       for (int l = 0; l < 3; ++l) {
-        final_reg(f.var[4], l, e);
-        final_reg(f.var[5], l, fv);
+        final_reg(f.var[4], l, n, e);
+        final_reg(f.var[5], l, n, fv);
         for (int i = 0; i < n; ++i) ef[l][i] = e[i] * fv[i];
       }
     if (f.need_spare0_plus_secondary)
       for (int l = 0; l < 3; ++l)
         for (int i = 0; i < n; ++i) {
-          const std::int64_t s = std::int64_t{std::max(reg[kSpare0][l][i], 0)} + std::max(reg[kSecondaryColor][l][i], 0);
+          const F s = F{std::max(reg[kSpare0][l][i], 0)} + std::max(reg[kSecondaryColor][l][i], 0);
           sps[l][i] = f.color_sum_clamp ? std::min(s, m) : s;
         }
-    auto wide = [&](const PlannedVar& v, int l, std::int64_t* w) {  // units of 1/M^2
+    auto wide = [&](const PlannedVar& v, int l, int count, F* w) {  // units of 1/M^2
       const bool inv = v.mapping == Mapping::UnsignedInvert;
       if (v.reg == kETimesF) {
-        for (int i = 0; i < n; ++i)
-          w[i] = inv ? m2 - std::clamp(ef[l][i], std::int64_t{0}, m2) : std::max(ef[l][i], std::int64_t{0});
+        for (int i = 0; i < count; ++i) w[i] = inv ? m2 - std::clamp(ef[l][i], F{0}, m2) : std::max(ef[l][i], F{0});
       } else if (v.reg == kSpare0PlusSecondary) {
-        for (int i = 0; i < n; ++i) w[i] = inv ? m2 - std::min(sps[l][i] * m, m2) : sps[l][i] * m;
+        for (int i = 0; i < count; ++i) w[i] = inv ? m2 - std::min(sps[l][i] * m, m2) : sps[l][i] * m;
       } else {
-        final_reg(v, l, w);
-        for (int i = 0; i < n; ++i) w[i] *= m;
+        final_reg(v, l, count, w);
+        for (int i = 0; i < count; ++i) w[i] *= m;
       }
     };
-    std::int64_t a[kChunk], b[kChunk], c[kChunk], d[kChunk];
-    // A, B, C, D all ZERO (a pass that computes only alpha): RGB is a constant.
+    F a[kChunk], b[kChunk], c[kChunk], d[kChunk];
+    // A, B, C, D all ZERO (a pass that computes only alpha): RGB is one constant,
+    // computed from the first fragment's (zero) lanes.
     bool rgb_const = true;
     for (std::size_t v = 0; v < 4; ++v) rgb_const &= f.var[v].reg == kZero;
-    for (int l = 0; l < 3 && rgb_const; ++l) {
-      wide(f.var[0], l, a);
-      wide(f.var[1], l, b);
-      wide(f.var[2], l, c);
-      wide(f.var[3], l, d);
-      Acc x = Acc{a[0]} * b[0] + (Acc{m2} - a[0]) * c[0] + Acc{d[0]} * Acc{m2};
-      if (x > m4) x = m4;
-      const auto k = static_cast<std::uint16_t>((2 * x * nmax + m4) / (2 * m4));
-      for (int i = 0; i < n; ++i) out[4 * i + l] = k;
-    }
-    for (int l = 0; l < 3 && !rgb_const; ++l) {
-      wide(f.var[0], l, a);
-      wide(f.var[1], l, b);
-      wide(f.var[2], l, c);
-      wide(f.var[3], l, d);
-      for (int i = 0; i < n; ++i) {
+    const int rgb_count = rgb_const ? 1 : n;
+    for (int l = 0; l < 3; ++l) {
+      wide(f.var[0], l, rgb_count, a);
+      wide(f.var[1], l, rgb_count, b);
+      wide(f.var[2], l, rgb_count, c);
+      wide(f.var[3], l, rgb_count, d);
+      for (int i = 0; i < rgb_count; ++i) {
         Acc x = Acc{a[i]} * b[i] + (Acc{m2} - a[i]) * c[i] + Acc{d[i]} * Acc{m2};
         if (x > m4) x = m4;
         out[4 * i + l] = static_cast<std::uint16_t>((2 * x * nmax + m4) / (2 * m4));
       }
     }
-    final_reg(f.var[6], 0, e);
-    for (int i = 0; i < n; ++i) out[4 * i + 3] = static_cast<std::uint16_t>((2 * Acc{e[i]} * nmax + m) / (2 * m));
+    if (rgb_const) {
+      const std::uint16_t r = out[0], g = out[1], bl = out[2];
+      for (int i = 1; i < n; ++i) {
+        out[4 * i] = r;
+        out[4 * i + 1] = g;
+        out[4 * i + 2] = bl;
+      }
+    }
+    // G: code = floor((2·e·N + M) / 2M), e in [0, M]; below 2^32 for M <= 32767.
+    final_reg(f.var[6], 0, n, e);
+    if constexpr (kM != 0 && kM <= 32767) {
+      const auto nm = static_cast<std::uint32_t>(nmax);
+      for (int i = 0; i < n; ++i)
+        out[4 * i + 3] = static_cast<std::uint16_t>((2 * static_cast<std::uint32_t>(e[i]) * nm + kM) / (2 * std::uint32_t{kM}));
+    } else {
+      for (int i = 0; i < n; ++i) out[4 * i + 3] = static_cast<std::uint16_t>((2 * Acc{e[i]} * nmax + m) / (2 * Acc{m}));
+    }
   }
 
   void run(const CombinerInputsFixed& in, const std::array<double, 4>& fog_color, std::uint16_t* out) {
