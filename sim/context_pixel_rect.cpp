@@ -5,7 +5,9 @@
 // per-fragment operations, owned by other areas). Stencil rectangles are written
 // directly through the scissor box and the stencil write mask (§4.3.1, §3.6.4).
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <vector>
 
 #include "pipeline/gl/enum_names.h"
 #include "pipeline/number/unorm.h"
@@ -75,27 +77,49 @@ void Context::emit_color_rect(const RgbaImage<T>& img) {
   const int bits = fb_.format().color_bits;
   const bool has_depth = fb_.has_depth();
   const std::uint32_t z = has_depth ? pixel::pack_unsigned(raster_pos_.z, fb_.format().depth_bits) : 0;
+  // A group's columns depend on n only and its rows on m only (group_extent):
+  // the columns, clipped to the window, are computed once for every row.
+  std::vector<std::array<int, 2>> cols(static_cast<std::size_t>(img.width));
+  for (int n = 0; n < img.width; ++n) {
+    int gx0, gx1, gy0, gy1;
+    group_extent(n, 0, gx0, gx1, gy0, gy1);
+    cols[static_cast<std::size_t>(n)] = {std::max(gx0, 0), std::min(gx1, fb_.width())};  // pixel ownership
+  }
+  FragmentSpan span;  // reused from row to row
+  std::vector<std::uint16_t> row_codes;
+  std::vector<double> row_values;
   for (int m = 0; m < img.height; ++m) {
     int x0, x1, y0, y1;
     group_extent(0, m, x0, x1, y0, y1);
-    for (int y = std::max(y0, 0); y < std::min(y1, fb_.height()); ++y) {
-      FragmentSpan span;
+    const int ya = std::max(y0, 0), yb = std::min(y1, fb_.height());
+    if (ya >= yb) continue;
+    // The row's colours converted once (every window row of the group repeats them).
+    if (fixed) {
+      row_codes.resize(4 * static_cast<std::size_t>(img.width));
+      for (int n = 0; n < img.width; ++n)
+        for (int k = 0; k < 4; ++k) row_codes[4 * static_cast<std::size_t>(n) + k] = pixel::final_code(img.at(n, m)[k], bits);
+    } else {
+      row_values.resize(4 * static_cast<std::size_t>(img.width));
+      for (int n = 0; n < img.width; ++n)
+        for (int k = 0; k < 4; ++k) row_values[4 * static_cast<std::size_t>(n) + k] = pixel::final_value(img.at(n, m)[k], profile_.arithmetic);
+    }
+    for (int y = ya; y < yb; ++y) {
       span.y = y;
+      span.count = 0;
+      span.codes.clear();
+      span.values.clear();
+      span.depth.clear();
       bool started = false;
       for_columns(img.width, pixel_zoom_[0], [&](int n) {
-        int gx0, gx1, gy0, gy1;
-        group_extent(n, m, gx0, gx1, gy0, gy1);
-        const T* c = img.at(n, m);
-        // Pixel ownership: only window pixels get fragments.
-        for (int x = std::max(gx0, 0); x < std::min(gx1, fb_.width()); ++x) {
+        const auto [xa, xe] = cols[static_cast<std::size_t>(n)];
+        for (int x = xa; x < xe; ++x) {
           if (!started) {
             span.x0 = x;
             started = true;
           }
-          for (int k = 0; k < 4; ++k) {
-            if (fixed) span.codes.push_back(pixel::final_code(c[k], bits));
-            else span.values.push_back(pixel::final_value(c[k], profile_.arithmetic));
-          }
+          const std::size_t o = 4 * static_cast<std::size_t>(n);
+          if (fixed) span.codes.insert(span.codes.end(), row_codes.begin() + static_cast<std::ptrdiff_t>(o), row_codes.begin() + static_cast<std::ptrdiff_t>(o + 4));
+          else span.values.insert(span.values.end(), row_values.begin() + static_cast<std::ptrdiff_t>(o), row_values.begin() + static_cast<std::ptrdiff_t>(o + 4));
           if (has_depth) span.depth.push_back(z);
           ++span.count;
         }
