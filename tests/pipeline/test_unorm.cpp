@@ -3,10 +3,12 @@
 // here in exact integer or rational arithmetic independent of the code under test.
 #include <doctest/doctest.h>
 
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <initializer_list>
 #include <limits>
+#include <random>
 
 #include "pipeline/number/unorm.h"
 
@@ -84,6 +86,34 @@ TEST_CASE("unorm: float -> fixed equals the exact rational rounding on a dense s
       REQUIRE(unorm_from_double(x, bits) == (2 * i * m + (1u << 20)) / (1u << 21));
     }
   }
+}
+
+TEST_CASE("unorm: float -> fixed equals the rounding computed from frexp, random doubles of every exponent") {
+  // unorm_from_double reads the binary64 fields; here x = f·2^e by std::frexp,
+  // mant = f·2^53, and floor(x·m + 1/2) = (mant·m + 2^(s−1)) >> s with s = 53 − e
+  // (the library decomposition as an independent reference). Random bit patterns
+  // of doubles in (0, 1): every exponent down to the subnormals.
+  std::mt19937_64 rng(31);
+  __extension__ typedef unsigned __int128 u128;
+  int nonzero = 0;
+  for (int it = 0; it < 200000; ++it) {
+    const std::uint64_t e = rng() % 1023;  // biased exponent 0 .. 1022: x < 1
+    const std::uint64_t pattern = (e << 52) | (rng() & ((std::uint64_t{1} << 52) - 1));
+    const double x = std::bit_cast<double>(pattern);
+    if (!(x > 0.0)) continue;
+    for (int bits : {1, 8, 10, 12, 16, 24}) {
+      const std::uint64_t m = unorm_max(bits);
+      int ex = 0;
+      const double f = std::frexp(x, &ex);
+      const auto mant = static_cast<std::uint64_t>(std::ldexp(f, 53));
+      const int sh = 53 - ex;
+      const std::uint32_t want =
+          sh >= 120 ? 0u : static_cast<std::uint32_t>((static_cast<u128>(mant) * m + (static_cast<u128>(1) << (sh - 1))) >> sh);
+      REQUIRE(unorm_from_double(x, bits) == want);
+      nonzero += want != 0;
+    }
+  }
+  CHECK(nonzero > 1000);
 }
 
 TEST_CASE("unorm: 24-bit conversions (depth codes) are exact") {
