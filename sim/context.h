@@ -541,7 +541,7 @@ class Context {
   // Flat-shading copy, clipping, window coordinates: appends the polygon's window
   // vertices to `out` (a fan) and returns true, or leaves `out` alone and returns
   // false when nothing of it is left.
-  bool prepare_polygon(std::vector<ClipVertex> poly, std::size_t provoking, const DrawSetup& ds,
+  bool prepare_polygon(std::vector<ClipVertex>& poly, std::size_t provoking, const DrawSetup& ds,
                        std::vector<WindowVertex>& out);
   // The rows [y0, y1) (relative to the viewport corner) of one triangle, shaded
   // into `span` and written; `band` >= 0: on a worker, into that band's scratch
@@ -549,10 +549,10 @@ class Context {
   void raster_triangle(const DrawSetup& ds, const std::array<const WindowVertex*, 3>& tv, int y0, int y1,
                        FragmentSpan& span, int band);
   // One thread (or the probe): prepare and rasterize a polygon at once.
-  void draw_polygon(std::vector<ClipVertex> poly, std::size_t provoking, const DrawSetup& ds);
+  void draw_polygon(std::vector<ClipVertex>& poly, std::size_t provoking, const DrawSetup& ds);
   // Threads: prepare a polygon into the batch (flushed when full), and rasterize
   // the batch in row bands on the pool (or on this thread when it is small).
-  void batch_polygon(std::vector<ClipVertex> poly, std::size_t provoking, const DrawSetup& ds);
+  void batch_polygon(std::vector<ClipVertex>& poly, std::size_t provoking, const DrawSetup& ds);
   void flush_batch(const DrawSetup& ds);
   void clear_batch();
 
@@ -610,6 +610,11 @@ class Context {
     std::vector<std::uint32_t> pixel;  // the group's fragments' pixel indices (y·width + x)
   };
   SpanScratch span_scratch_;
+  // glEnd's polygons (clip coordinates, then window vertices) in buffers reused
+  // from polygon to polygon: no allocation per triangle. prepare_polygon clips in
+  // place (clip_polygon hands the same buffer back when nothing is clipped).
+  std::vector<ClipVertex> polygon_scratch_;
+  std::vector<WindowVertex> window_scratch_;
   // Threads: the pool (rebuilt when threads() changes) and per-band scratch.
   // A batch whose triangles' bounding boxes (clipped to the window) sum to at
   // least kSplitFragments pixels is split into bands of rows.

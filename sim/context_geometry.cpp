@@ -4,6 +4,7 @@
 // sim/draw.cpp (clipping, rasterization, shading).
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 
 #include "pipeline/gl/enum_names.h"
 #include "sim/context.h"
@@ -73,9 +74,11 @@ void Context::end() {
   // One thread: each polygon is drawn at once. Threads: the polygons are prepared
   // into batches, each rasterized in row bands (sim/draw.cpp, docs/performance.md).
   if (ds.bands && !batch_pending_) clear_batch();
-  auto draw_polygon = [&](std::vector<ClipVertex> poly, std::size_t provoking) {
-    if (ds.bands) batch_polygon(std::move(poly), provoking, ds);
-    else this->draw_polygon(std::move(poly), provoking, ds);
+  auto draw_polygon = [&](std::initializer_list<ClipVertex> vertices, std::size_t provoking) {
+    std::vector<ClipVertex>& poly = polygon_scratch_;  // (assign keeps its capacity)
+    poly.assign(vertices);
+    if (ds.bands) batch_polygon(poly, provoking, ds);
+    else this->draw_polygon(poly, provoking, ds);
   };
   // Provoking vertex for flat shading (GL121 Table 2.9, 0-based here).
   switch (begin_mode_) {
@@ -98,7 +101,11 @@ void Context::end() {
       for (std::size_t i = 0; i + 3 < n; i += 2) draw_polygon({v[i], v[i + 1], v[i + 3], v[i + 2]}, 2);
       break;
     case gl::POLYGON:
-      if (n >= 3) draw_polygon(v, 0);
+      if (n >= 3) {
+        polygon_scratch_.assign(v.begin(), v.end());
+        if (ds.bands) batch_polygon(polygon_scratch_, 0, ds);
+        else this->draw_polygon(polygon_scratch_, 0, ds);
+      }
       break;
     default: break;
   }

@@ -221,7 +221,7 @@ Context::DrawSetup Context::draw_setup(const ShadingState& st, const ShadingPlan
   return ds;
 }
 
-bool Context::prepare_polygon(std::vector<ClipVertex> poly, std::size_t provoking, const DrawSetup& ds,
+bool Context::prepare_polygon(std::vector<ClipVertex>& poly, std::size_t provoking, const DrawSetup& ds,
                               std::vector<WindowVertex>& out) {
   if (ds.flat) {  // §2.13.7: every vertex takes the provoking vertex's colours
     for (ClipVertex& v : poly) {
@@ -490,9 +490,10 @@ void Context::raster_triangle(const DrawSetup& ds, const std::array<const Window
                      [&shade_run](const TriangleCoverage& cov, const CoverageRun& run) { shade_run(cov, run); });
 }
 
-void Context::draw_polygon(std::vector<ClipVertex> poly, std::size_t provoking, const DrawSetup& ds) {
-  std::vector<WindowVertex> wv;
-  if (!prepare_polygon(std::move(poly), provoking, ds, wv)) return;
+void Context::draw_polygon(std::vector<ClipVertex>& poly, std::size_t provoking, const DrawSetup& ds) {
+  std::vector<WindowVertex>& wv = window_scratch_;
+  wv.clear();
+  if (!prepare_polygon(poly, provoking, ds, wv)) return;
   FragmentSpan span;  // reused from run to run
   for (std::size_t i = 1; i + 1 < wv.size(); ++i) raster_triangle(ds, {&wv[0], &wv[i], &wv[i + 1]}, ds.cy0, ds.cy1, span, -1);
 }
@@ -504,9 +505,9 @@ void Context::clear_batch() {
   batch_area_ = 0;
 }
 
-void Context::batch_polygon(std::vector<ClipVertex> poly, std::size_t provoking, const DrawSetup& ds) {
+void Context::batch_polygon(std::vector<ClipVertex>& poly, std::size_t provoking, const DrawSetup& ds) {
   const std::size_t base = batch_vertices_.size();
-  if (!prepare_polygon(std::move(poly), provoking, ds, batch_vertices_)) return;
+  if (!prepare_polygon(poly, provoking, ds, batch_vertices_)) return;
   const int S = profile_.subpixel_bits;
   for (std::size_t i = base + 1; i + 1 < batch_vertices_.size(); ++i) {
     const SnappedVertex &a = batch_vertices_[base].p, &b = batch_vertices_[i].p, &c = batch_vertices_[i + 1].p;
