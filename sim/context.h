@@ -422,6 +422,9 @@ class Context {
   // the pool. Batches so split, and the triangles they held.
   std::uint64_t split_batches() const { return split_batches_; }
   std::uint64_t split_triangles() const { return split_triangles_; }
+  // glEnds whose vertices were put in window form once and shared by their
+  // polygons (span path, smooth shading, every vertex inside the view volume).
+  std::uint64_t shared_vertex_draws() const { return shared_vertex_draws_; }
 
  private:
   bool set_capability(GLenum cap, bool on, const char* function);
@@ -543,6 +546,9 @@ class Context {
   // false when nothing of it is left.
   bool prepare_polygon(std::vector<ClipVertex>& poly, std::size_t provoking, const DrawSetup& ds,
                        std::vector<WindowVertex>& out);
+  // One vertex's window form (§2.10.1 viewport, snapped; depth and colour codes;
+  // texture coordinates over w).
+  void window_vertex(const ClipVertex& c, const DrawSetup& ds, WindowVertex& w) const;
   // The rows [y0, y1) (relative to the viewport corner) of one triangle, shaded
   // into `span` and written; `band` >= 0: on a worker, into that band's scratch
   // and counters (write_fragments without its plan update and probe).
@@ -553,6 +559,9 @@ class Context {
   // Threads: prepare a polygon into the batch (flushed when full), and rasterize
   // the batch in row bands on the pool (or on this thread when it is small).
   void batch_polygon(std::vector<ClipVertex>& poly, std::size_t provoking, const DrawSetup& ds);
+  // The triangle of batch_vertices_[a], [b], [c] into the batch (left out when its
+  // bounding box misses the window).
+  void batch_triangle(std::size_t a, std::size_t b, std::size_t c, const DrawSetup& ds);
   void flush_batch(const DrawSetup& ds);
   void clear_batch();
 
@@ -593,7 +602,7 @@ class Context {
 
   // ==== [issue 10] state ====
   bool fast_paths_ = true;
-  std::uint64_t fast_runs_ = 0, split_batches_ = 0, split_triangles_ = 0;
+  std::uint64_t fast_runs_ = 0, split_batches_ = 0, split_triangles_ = 0, shared_vertex_draws_ = 0;
   // Scratch of the span path, reused from run to run (sim/draw_span.cpp).
   struct SpanScratch {
     std::vector<std::uint16_t> primary, secondary;

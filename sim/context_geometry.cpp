@@ -8,6 +8,7 @@
 
 #include "pipeline/gl/enum_names.h"
 #include "sim/context.h"
+#include "sim/draw_span.h"  // WindowVertex
 
 namespace ffsim {
 
@@ -74,34 +75,73 @@ void Context::end() {
   // One thread: each polygon is drawn at once. Threads: the polygons are prepared
   // into batches, each rasterized in row bands (sim/draw.cpp, docs/performance.md).
   if (ds.bands && !batch_pending_) clear_batch();
-  auto draw_polygon = [&](std::initializer_list<ClipVertex> vertices, std::size_t provoking) {
-    std::vector<ClipVertex>& poly = polygon_scratch_;  // (assign keeps its capacity)
-    poly.assign(vertices);
+  // Shared vertices (span path, smooth shading, every vertex inside the view
+  // volume with w > 0): clip_polygon leaves every polygon as it is and
+  // prepare_polygon keeps it, so a vertex's window form is the same in every
+  // polygon that uses it; each is computed once and the polygons' fans index
+  // them. The same triangles in the same order as polygon by polygon.
+  bool shared = fast_paths_ && !ds.flat && n >= 3;
+  for (std::size_t i = 0; i < n && shared; ++i) shared = inside_view_volume(v[i].position);
+  std::size_t shared_base = 0;
+  FragmentSpan shared_span;
+  if (shared) {
+    ++shared_vertex_draws_;
+    std::vector<WindowVertex>& wv = ds.bands ? batch_vertices_ : window_scratch_;
+    if (!ds.bands) wv.clear();
+    shared_base = wv.size();
+    wv.resize(shared_base + n);
+    for (std::size_t i = 0; i < n; ++i) window_vertex(v[i], ds, wv[shared_base + i]);
+  }
+  auto draw_polygon = [&](std::initializer_list<std::size_t> index, std::size_t provoking) {
+    if (shared) {
+      const std::size_t* k = index.begin();
+      for (std::size_t j = 1; j + 1 < index.size(); ++j) {
+        if (ds.bands) {
+          batch_triangle(shared_base + k[0], shared_base + k[j], shared_base + k[j + 1], ds);
+        } else {
+          const std::vector<WindowVertex>& wv = window_scratch_;
+          raster_triangle(ds, {&wv[k[0]], &wv[k[j]], &wv[k[j + 1]]}, ds.cy0, ds.cy1, shared_span, -1);
+        }
+      }
+      return;
+    }
+    std::vector<ClipVertex>& poly = polygon_scratch_;  // (keeps its capacity)
+    poly.clear();
+    for (const std::size_t k : index) poly.push_back(v[k]);
     if (ds.bands) batch_polygon(poly, provoking, ds);
     else this->draw_polygon(poly, provoking, ds);
   };
   // Provoking vertex for flat shading (GL121 Table 2.9, 0-based here).
   switch (begin_mode_) {
     case gl::TRIANGLES:
-      for (std::size_t i = 0; i + 2 < n; i += 3) draw_polygon({v[i], v[i + 1], v[i + 2]}, 2);
+      for (std::size_t i = 0; i + 2 < n; i += 3) draw_polygon({i, i + 1, i + 2}, 2);
       break;
     case gl::TRIANGLE_STRIP:
       for (std::size_t i = 0; i + 2 < n; ++i) {
-        if (i % 2 == 0) draw_polygon({v[i], v[i + 1], v[i + 2]}, 2);
-        else draw_polygon({v[i + 1], v[i], v[i + 2]}, 2);  // keep the strip's orientation
+        if (i % 2 == 0) draw_polygon({i, i + 1, i + 2}, 2);
+        else draw_polygon({i + 1, i, i + 2}, 2);  // keep the strip's orientation
       }
       break;
     case gl::TRIANGLE_FAN:
-      for (std::size_t i = 1; i + 1 < n; ++i) draw_polygon({v[0], v[i], v[i + 1]}, 2);
+      for (std::size_t i = 1; i + 1 < n; ++i) draw_polygon({0, i, i + 1}, 2);
       break;
     case gl::QUADS:
-      for (std::size_t i = 0; i + 3 < n; i += 4) draw_polygon({v[i], v[i + 1], v[i + 2], v[i + 3]}, 3);
+      for (std::size_t i = 0; i + 3 < n; i += 4) draw_polygon({i, i + 1, i + 2, i + 3}, 3);
       break;
     case gl::QUAD_STRIP:
-      for (std::size_t i = 0; i + 3 < n; i += 2) draw_polygon({v[i], v[i + 1], v[i + 3], v[i + 2]}, 2);
+      for (std::size_t i = 0; i + 3 < n; i += 2) draw_polygon({i, i + 1, i + 3, i + 2}, 2);
       break;
     case gl::POLYGON:
-      if (n >= 3) {
+      if (n >= 3 && shared) {
+        for (std::size_t j = 1; j + 1 < n; ++j) {  // the fan of the whole polygon
+          if (ds.bands) {
+            batch_triangle(shared_base, shared_base + j, shared_base + j + 1, ds);
+          } else {
+            const std::vector<WindowVertex>& wv = window_scratch_;
+            raster_triangle(ds, {&wv[0], &wv[j], &wv[j + 1]}, ds.cy0, ds.cy1, shared_span, -1);
+          }
+        }
+      } else if (n >= 3) {
         polygon_scratch_.assign(v.begin(), v.end());
         if (ds.bands) batch_polygon(polygon_scratch_, 0, ds);
         else this->draw_polygon(polygon_scratch_, 0, ds);
@@ -109,6 +149,9 @@ void Context::end() {
       break;
     default: break;
   }
+  // Shared vertices: the batch is flushed when full only here, after the glEnd's
+  // triangles (they index this glEnd's vertices, which a flush would clear).
+  if (shared && ds.bands && batch_triangles_.size() >= kBatchTriangles) flush_batch(ds);
   if (ds.bands && defer) {  // drawn by a later glEnd's flush or flush_deferred()
     deferred_ds_ = ds;
     batch_pending_ = !batch_triangles_.empty();

@@ -234,29 +234,29 @@ bool Context::prepare_polygon(std::vector<ClipVertex>& poly, std::size_t provoki
   for (const ClipVertex& v : poly)
     if (!(v.position.w > 0)) return false;  // only a polygon through the eye point itself: no area
 
-  const int S = profile_.subpixel_bits;
-  const double hw = ds.hw, hh = ds.hh;
   const std::size_t base = out.size();
   out.resize(base + poly.size());
-  for (std::size_t i = 0; i < poly.size(); ++i) {
-    const ClipVertex& c = poly[i];
-    WindowVertex& w = out[base + i];
-    const double iw = 1.0 / c.position.w;
-    // §2.10.1 viewport transformation, relative to the viewport corner (vx, vy).
-    w.p.x = snap_coordinate((c.position.x * iw + 1) * hw, S);
-    w.p.y = snap_coordinate((c.position.y * iw + 1) * hh, S);
-    const double zw = depth_near_ + (depth_far_ - depth_near_) * ((c.position.z * iw + 1) / 2);
-    if (ds.has_depth) w.depth = unorm_from_double(zw, fb_.format().depth_bits);
-    // Vertex colours into the fragment colour format (§1.2 codes, or binary32/64).
-    const Rgba pc = rgba_from_values(c.color, ds.st->color), sc = rgba_from_values(c.secondary, ds.st->color);
-    w.color_code = pc.code;
-    w.secondary_code = sc.code;
-    w.color = pc.value;
-    w.secondary = sc.value;
-    for (int u = 0; u < kMaxTextureUnits; ++u)
-      w.tcw[u] = {c.texcoord[u].x * iw, c.texcoord[u].y * iw, c.texcoord[u].w * iw};
-  }
+  for (std::size_t i = 0; i < poly.size(); ++i) window_vertex(poly[i], ds, out[base + i]);
   return true;
+}
+
+void Context::window_vertex(const ClipVertex& c, const DrawSetup& ds, WindowVertex& w) const {
+  const int S = profile_.subpixel_bits;
+  const double hw = ds.hw, hh = ds.hh;
+  const double iw = 1.0 / c.position.w;
+  // §2.10.1 viewport transformation, relative to the viewport corner (vx, vy).
+  w.p.x = snap_coordinate((c.position.x * iw + 1) * hw, S);
+  w.p.y = snap_coordinate((c.position.y * iw + 1) * hh, S);
+  const double zw = depth_near_ + (depth_far_ - depth_near_) * ((c.position.z * iw + 1) / 2);
+  if (ds.has_depth) w.depth = unorm_from_double(zw, fb_.format().depth_bits);
+  // Vertex colours into the fragment colour format (§1.2 codes, or binary32/64).
+  const Rgba pc = rgba_from_values(c.color, ds.st->color), sc = rgba_from_values(c.secondary, ds.st->color);
+  w.color_code = pc.code;
+  w.secondary_code = sc.code;
+  w.color = pc.value;
+  w.secondary = sc.value;
+  for (int u = 0; u < kMaxTextureUnits; ++u)
+    w.tcw[u] = {c.texcoord[u].x * iw, c.texcoord[u].y * iw, c.texcoord[u].w * iw};
 }
 
 void Context::raster_triangle(const DrawSetup& ds, const std::array<const WindowVertex*, 3>& tv, int y0, int y1,
@@ -508,23 +508,25 @@ void Context::clear_batch() {
 void Context::batch_polygon(std::vector<ClipVertex>& poly, std::size_t provoking, const DrawSetup& ds) {
   const std::size_t base = batch_vertices_.size();
   if (!prepare_polygon(poly, provoking, ds, batch_vertices_)) return;
-  const int S = profile_.subpixel_bits;
-  for (std::size_t i = base + 1; i + 1 < batch_vertices_.size(); ++i) {
-    const SnappedVertex &a = batch_vertices_[base].p, &b = batch_vertices_[i].p, &c = batch_vertices_[i + 1].p;
-    // Rows and columns the triangle's bounding box may cover (one more each way
-    // than the snapped extremes), clipped to the window. A triangle that misses
-    // the window produces no fragment and is left out.
-    const std::int64_t lo = std::min({a.y, b.y, c.y}) >> S, hi = (std::max({a.y, b.y, c.y}) >> S) + 2;
-    const std::int64_t le = std::min({a.x, b.x, c.x}) >> S, ri = (std::max({a.x, b.x, c.x}) >> S) + 2;
-    const int r0 = static_cast<int>(std::max<std::int64_t>(lo, ds.cy0)), r1 = static_cast<int>(std::min<std::int64_t>(hi, ds.cy1));
-    const int c0 = static_cast<int>(std::max<std::int64_t>(le, ds.cx0)), c1 = static_cast<int>(std::min<std::int64_t>(ri, ds.cx1));
-    if (r1 <= r0 || c1 <= c0) continue;
-    batch_r0_ = batch_triangles_.empty() ? r0 : std::min(batch_r0_, r0);
-    batch_r1_ = batch_triangles_.empty() ? r1 : std::max(batch_r1_, r1);
-    batch_area_ += std::int64_t{r1 - r0} * (c1 - c0);
-    batch_triangles_.push_back({{static_cast<std::uint32_t>(base), static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(i + 1)}, r0, r1});
-  }
+  for (std::size_t i = base + 1; i + 1 < batch_vertices_.size(); ++i) batch_triangle(base, i, i + 1, ds);
   if (batch_triangles_.size() >= kBatchTriangles) flush_batch(ds);
+}
+
+void Context::batch_triangle(std::size_t a, std::size_t b, std::size_t c, const DrawSetup& ds) {
+  const int S = profile_.subpixel_bits;
+  const SnappedVertex &pa = batch_vertices_[a].p, &pb = batch_vertices_[b].p, &pc = batch_vertices_[c].p;
+  // Rows and columns the triangle's bounding box may cover (one more each way
+  // than the snapped extremes), clipped to the window. A triangle that misses
+  // the window produces no fragment and is left out.
+  const std::int64_t lo = std::min({pa.y, pb.y, pc.y}) >> S, hi = (std::max({pa.y, pb.y, pc.y}) >> S) + 2;
+  const std::int64_t le = std::min({pa.x, pb.x, pc.x}) >> S, ri = (std::max({pa.x, pb.x, pc.x}) >> S) + 2;
+  const int r0 = static_cast<int>(std::max<std::int64_t>(lo, ds.cy0)), r1 = static_cast<int>(std::min<std::int64_t>(hi, ds.cy1));
+  const int c0 = static_cast<int>(std::max<std::int64_t>(le, ds.cx0)), c1 = static_cast<int>(std::min<std::int64_t>(ri, ds.cx1));
+  if (r1 <= r0 || c1 <= c0) return;
+  batch_r0_ = batch_triangles_.empty() ? r0 : std::min(batch_r0_, r0);
+  batch_r1_ = batch_triangles_.empty() ? r1 : std::max(batch_r1_, r1);
+  batch_area_ += std::int64_t{r1 - r0} * (c1 - c0);
+  batch_triangles_.push_back({{static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), static_cast<std::uint32_t>(c)}, r0, r1});
 }
 
 void Context::flush_batch(const DrawSetup& ds) {

@@ -31,7 +31,8 @@ struct SceneOptions {
   bool combiners = true;   // sometimes enable the register combiners
   bool fragment_ops = true;  // random blend / alpha / stencil / depth / masks
   bool copy_pixels = false;  // also CopyPixels passes
-  int triangles = 6;
+  bool all_modes = true;     // every polygon mode (else GL_TRIANGLES only)
+  int triangles = 6;         // 3·triangles vertices per glBegin/glEnd
 };
 
 inline void random_texture(Context& c, SceneRng& r, int unit, std::uint32_t name) {
@@ -222,7 +223,9 @@ inline void draw_random_scene(Context& c, std::uint32_t seed, const SceneOptions
     c.shadeModel(r.b(80) ? gl::SMOOTH : gl::FLAT);
     if (opt.fragment_ops) random_fragment_ops(c, r);
     const bool aligned = r.b(30);
-    c.begin(gl::TRIANGLES);
+    static const GLenum kModes[] = {gl::TRIANGLES, gl::TRIANGLE_STRIP, gl::TRIANGLE_FAN,
+                                    gl::QUADS,     gl::QUAD_STRIP,     gl::POLYGON};
+    c.begin(opt.all_modes ? r.pick(kModes) : gl::TRIANGLES);
     for (int k = 0; k < 3 * opt.triangles; ++k) random_vertex(c, r, aligned);
     c.end();
     if (opt.copy_pixels) {

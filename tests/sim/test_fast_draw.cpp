@@ -117,3 +117,38 @@ TEST_CASE("fast draw: interpolate_code_run equals interpolate_code on random run
   }
   CHECK(wide > 150);  // (236 with this seed: the 128-bit form is exercised)
 }
+
+TEST_CASE("fast draw: vertices shared by a glEnd's polygons (window form once), every mode, 1 and 2 threads") {
+  // Smooth shading with every vertex inside the view volume: the span path puts
+  // each vertex in window form once and indexes it from every polygon. Scenes of
+  // one mode at a time, vertices in the window, fast == reference, and the shared
+  // form must have been taken.
+  const GLenum modes[] = {gl::TRIANGLES, gl::TRIANGLE_STRIP, gl::TRIANGLE_FAN, gl::QUADS, gl::QUAD_STRIP, gl::POLYGON};
+  for (const GLenum mode : modes)
+    for (int threads : {1, 2}) {
+      std::uint64_t shared = 0;
+      for (std::uint32_t seed = 90; seed < 96; ++seed) {
+        Pair p("geforce256", 64, 48);
+        for (Context* c : {&p.fast, &p.slow}) {
+          SceneRng r(seed);
+          c->set_threads(threads);
+          random_clear_and_projection(*c, r, 0);
+          c->shadeModel(gl::SMOOTH);
+          c->enable(gl::DEPTH_TEST);
+          c->enable(gl::BLEND);
+          c->blendFunc(gl::SRC_ALPHA, gl::ONE_MINUS_SRC_ALPHA);
+          c->begin(mode);
+          for (int k = 0; k < 24; ++k) {
+            c->color4(r.d(0, 1), r.d(0, 1), r.d(0, 1), r.d(0, 1));
+            c->vertex3(r.d(0, 64), r.d(0, 48), r.d(-0.9, 0.9));
+          }
+          c->end();
+        }
+        INFO("mode ", mode, " threads ", threads, " seed ", seed);
+        REQUIRE(buffer_hashes(p.fast) == buffer_hashes(p.slow));
+        CHECK(p.slow.shared_vertex_draws() == 0);
+        shared += p.fast.shared_vertex_draws();
+      }
+      CHECK(shared > 0);
+    }
+}
