@@ -627,6 +627,7 @@ void sample_span_fixed(const TextureObject& tex, int dims, const double* s, cons
   const bool repeat = tex.params.wrap_s == gl::REPEAT && tex.params.wrap_t == gl::REPEAT;
   if (linear && repeat && narrow && L.ncomp == 4) span_linear_repeat<4>(L, s, t, n, out);
   else if (linear && repeat && narrow && L.ncomp == 3) span_linear_repeat<3>(L, s, t, n, out);
+  else if (linear && repeat && narrow && L.ncomp == 1) span_linear_repeat<1>(L, s, t, n, out);
   else if (linear && repeat && narrow) span_linear_repeat<0>(L, s, t, n, out);
   else if (!linear) span_level<false, true, std::uint64_t, 0>(L, s, t, n, out);
   else if (direct && narrow && L.ncomp == 4) span_level<true, true, std::uint32_t, 4>(L, s, t, n, out);
