@@ -84,6 +84,10 @@ class Runner {
     } catch (const std::exception& e) {
       r_.ok = false;
       r_.fatal = e.what();
+      try {  // the Context back to immediate draws, with what was pending drawn
+        ctx.set_defer_draws(false);
+      } catch (const std::exception&) {  // (already failing: the first error is reported)
+      }
     }
     commit();
     r_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
