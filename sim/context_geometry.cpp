@@ -92,17 +92,21 @@ void Context::end() {
     wv.resize(shared_base + n);
     for (std::size_t i = 0; i < n; ++i) window_vertex(v[i], ds, wv[shared_base + i]);
   }
+  // A polygon's fan over the shared window vertices: corner j is vertex at(j).
+  auto shared_fan = [&](auto at, std::size_t count) {
+    for (std::size_t j = 1; j + 1 < count; ++j) {
+      if (ds.bands) {
+        batch_triangle(shared_base + at(0), shared_base + at(j), shared_base + at(j + 1), ds);
+      } else {
+        const std::vector<WindowVertex>& wv = window_scratch_;
+        raster_triangle(ds, {&wv[at(0)], &wv[at(j)], &wv[at(j + 1)]}, ds.cy0, ds.cy1, shared_span, -1);
+      }
+    }
+  };
   auto draw_polygon = [&](std::initializer_list<std::size_t> index, std::size_t provoking) {
     if (shared) {
       const std::size_t* k = index.begin();
-      for (std::size_t j = 1; j + 1 < index.size(); ++j) {
-        if (ds.bands) {
-          batch_triangle(shared_base + k[0], shared_base + k[j], shared_base + k[j + 1], ds);
-        } else {
-          const std::vector<WindowVertex>& wv = window_scratch_;
-          raster_triangle(ds, {&wv[k[0]], &wv[k[j]], &wv[k[j + 1]]}, ds.cy0, ds.cy1, shared_span, -1);
-        }
-      }
+      shared_fan([k](std::size_t j) { return k[j]; }, index.size());
       return;
     }
     std::vector<ClipVertex>& poly = polygon_scratch_;  // (keeps its capacity)
@@ -133,14 +137,7 @@ void Context::end() {
       break;
     case gl::POLYGON:
       if (n >= 3 && shared) {
-        for (std::size_t j = 1; j + 1 < n; ++j) {  // the fan of the whole polygon
-          if (ds.bands) {
-            batch_triangle(shared_base, shared_base + j, shared_base + j + 1, ds);
-          } else {
-            const std::vector<WindowVertex>& wv = window_scratch_;
-            raster_triangle(ds, {&wv[0], &wv[j], &wv[j + 1]}, ds.cy0, ds.cy1, shared_span, -1);
-          }
-        }
+        shared_fan([](std::size_t j) { return j; }, n);  // the fan of the whole polygon
       } else if (n >= 3) {
         polygon_scratch_.assign(v.begin(), v.end());
         if (ds.bands) batch_polygon(polygon_scratch_, 0, ds);
