@@ -268,13 +268,15 @@ void Context::raster_triangle(const DrawSetup& ds, const std::array<const Window
   const bool has_depth = ds.has_depth, flat = ds.flat, shade = ds.shade;
   SpanScratch& sc = band < 0 ? span_scratch_ : band_scratch_[static_cast<std::size_t>(band)];
   // `span` to the per-fragment operations; `band` >= 0: on a worker (no probe, plans ready).
+  auto count_fragments = [&](int n) {  // fragments_written_, or this band's share of it
+    if (band < 0) fragments_written_ += static_cast<std::uint64_t>(n);
+    else band_fragments_[static_cast<std::size_t>(band)] += static_cast<std::uint64_t>(n);
+  };
   auto write = [&] {
-    if (band < 0 && !ds.direct_writes) write_fragments(span);
-    else if (band < 0) {  // write_fragments without the plan update and the probe (done, off)
-      fragments_written_ += static_cast<std::uint64_t>(span.count);
-      run_fragment_plan(*fragment_current_plan_, fragment_current_constants_, span, ds.buffers, fb_.width());
-    } else {  // the same on a worker
-      band_fragments_[static_cast<std::size_t>(band)] += static_cast<std::uint64_t>(span.count);
+    if (band < 0 && !ds.direct_writes) {
+      write_fragments(span);
+    } else {  // write_fragments without the plan update and the probe (done, off), here or on a worker
+      count_fragments(span.count);
       run_fragment_plan(*fragment_current_plan_, fragment_current_constants_, span, ds.buffers, fb_.width());
     }
   };
@@ -338,8 +340,7 @@ void Context::raster_triangle(const DrawSetup& ds, const std::array<const Window
           for (int i = 0; i < runs.length[r]; ++i) sc.pixel[static_cast<std::size_t>(off + i)] = first + static_cast<std::uint32_t>(i);
           count_fast_run();
         }
-        if (band < 0) fragments_written_ += static_cast<std::uint64_t>(runs.count);
-        else band_fragments_[static_cast<std::size_t>(band)] += static_cast<std::uint64_t>(runs.count);
+        count_fragments(runs.count);
         run_fragment_plan_pixels(*fragment_current_plan_, fragment_current_constants_, sc.codes.data(),
                                  has_depth ? sc.depth.data() : nullptr, sc.pixel.data(), runs.count, ds.buffers);
         clear_group();

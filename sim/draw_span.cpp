@@ -65,23 +65,30 @@ void interpolate_colors(const std::array<const WindowVertex*, 3>& tv, bool secon
 //    orthographic screen quad) and A < 2^53, v_2 = (Σ w_k)/A = A/A = 1 exactly
 //    (the integer weights and their partial sums are exact in binary64), and
 //    x / 1 = x: v_2 and the two divisions by it are skipped with the same result.
+using Coords = std::array<double, 3>;  // s/w, t/w, q/w at a vertex
+
+// s/q and t/q at one fragment of weights (w0, w1, w2) (binary64, the reference's order).
 template <bool kUnitQ>
-void coordinates_stepped(const std::array<double, 3>& c0, const std::array<double, 3>& c1,
-                         const std::array<double, 3>& c2, double a, const std::array<double, 3>& first,
-                         const std::array<double, 3>& d, int n, double* s, double* t) {
+inline void coordinates_at(const Coords& c0, const Coords& c1, const Coords& c2, double a, double w0, double w1,
+                           double w2, double& s, double& t) {
+  const double v0 = (((0.0 + w0 * c0[0]) + w1 * c1[0]) + w2 * c2[0]) / a;
+  const double v1 = (((0.0 + w0 * c0[1]) + w1 * c1[1]) + w2 * c2[1]) / a;
+  if constexpr (kUnitQ) {
+    s = v0;
+    t = v1;
+  } else {
+    const double q = (((0.0 + w0 * c0[2]) + w1 * c1[2]) + w2 * c2[2]) / a;
+    s = v0 / q;
+    t = v1 / q;
+  }
+}
+
+template <bool kUnitQ>
+void coordinates_stepped(const Coords& c0, const Coords& c1, const Coords& c2, double a, const Coords& first,
+                         const Coords& d, int n, double* s, double* t) {
   for (int i = 0; i < n; ++i) {
     const double fi = static_cast<double>(i);
-    const double w0 = first[0] + fi * d[0], w1 = first[1] + fi * d[1], w2 = first[2] + fi * d[2];
-    const double v0 = (((0.0 + w0 * c0[0]) + w1 * c1[0]) + w2 * c2[0]) / a;
-    const double v1 = (((0.0 + w0 * c0[1]) + w1 * c1[1]) + w2 * c2[1]) / a;
-    if constexpr (kUnitQ) {
-      s[i] = v0;
-      t[i] = v1;
-    } else {
-      const double q = (((0.0 + w0 * c0[2]) + w1 * c1[2]) + w2 * c2[2]) / a;
-      s[i] = v0 / q;
-      t[i] = v1 / q;
-    }
+    coordinates_at<kUnitQ>(c0, c1, c2, a, first[0] + fi * d[0], first[1] + fi * d[1], first[2] + fi * d[2], s[i], t[i]);
   }
 }
 
@@ -93,13 +100,12 @@ void texture_coordinates(const std::array<const WindowVertex*, 3>& tv, int u, co
   const auto& c2 = tv[2]->tcw[u];
   const bool exact = cov.area < (std::int64_t{1} << 53);
   const bool unit_q = c0[2] == 1.0 && c1[2] == 1.0 && c2[2] == 1.0 && exact;
-  const std::array<double, 3> d{static_cast<double>(cov.dwdx[0]), static_cast<double>(cov.dwdx[1]),
-                                static_cast<double>(cov.dwdx[2])};
+  const Coords d{static_cast<double>(cov.dwdx[0]), static_cast<double>(cov.dwdx[1]), static_cast<double>(cov.dwdx[2])};
   for (int r = 0, off = 0; r < runs.runs; off += runs.length[r], ++r) {
     const std::array<std::int64_t, 3>& w = runs.first[r];
     const int n = runs.length[r];
     if (exact) {
-      const std::array<double, 3> f{static_cast<double>(w[0]), static_cast<double>(w[1]), static_cast<double>(w[2])};
+      const Coords f{static_cast<double>(w[0]), static_cast<double>(w[1]), static_cast<double>(w[2])};
       if (unit_q) coordinates_stepped<true>(c0, c1, c2, a, f, d, n, s + off, t + off);
       else coordinates_stepped<false>(c0, c1, c2, a, f, d, n, s + off, t + off);
       continue;
@@ -107,11 +113,7 @@ void texture_coordinates(const std::array<const WindowVertex*, 3>& tv, int u, co
     for (int i = 0; i < n; ++i) {  // the reference's conversions of the int64 weights
       double wd[3];
       for (int k = 0; k < 3; ++k) wd[k] = static_cast<double>(w[k] + i * cov.dwdx[k]);
-      const double v0 = (((0.0 + wd[0] * c0[0]) + wd[1] * c1[0]) + wd[2] * c2[0]) / a;
-      const double v1 = (((0.0 + wd[0] * c0[1]) + wd[1] * c1[1]) + wd[2] * c2[1]) / a;
-      const double q = (((0.0 + wd[0] * c0[2]) + wd[1] * c1[2]) + wd[2] * c2[2]) / a;
-      s[off + i] = v0 / q;
-      t[off + i] = v1 / q;
+      coordinates_at<false>(c0, c1, c2, a, wd[0], wd[1], wd[2], s[off + i], t[off + i]);
     }
   }
 }

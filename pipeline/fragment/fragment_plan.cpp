@@ -397,9 +397,8 @@ void color_interleaved(std::uint16_t m, const std::uint16_t* in, std::uint16_t* 
       const __m128i r = interleaved_lanes<kOp>(vm, s, d);
       _mm_storel_epi64(reinterpret_cast<__m128i*>(px), _mm_or_si128(_mm_and_si128(r, w), _mm_andnot_si128(w, d)));
     }
-    return;
   }
-#endif
+#else
   for (int j = 0; j < n; ++j) {
     const std::uint16_t a = alive[j] ? 0xFFFF : 0;
     std::uint16_t* px = fb + 4 * pixel(j);
@@ -409,6 +408,20 @@ void color_interleaved(std::uint16_t m, const std::uint16_t* in, std::uint16_t* 
       const std::uint16_t w = a & wmask[c];
       px[c] = static_cast<std::uint16_t>((r & w) | (d & ~w));
     }
+  }
+#endif
+}
+
+// f(the operation as a compile-time constant), for an operation other than None.
+template <class F>
+void with_interleaved(Interleaved op, F f) {
+  switch (op) {
+    case Interleaved::Copy: return f(std::integral_constant<Interleaved, Interleaved::Copy>{});
+    case Interleaved::Add: return f(std::integral_constant<Interleaved, Interleaved::Add>{});
+    case Interleaved::Sub: return f(std::integral_constant<Interleaved, Interleaved::Sub>{});
+    case Interleaved::RevSub: return f(std::integral_constant<Interleaved, Interleaved::RevSub>{});
+    case Interleaved::Min: return f(std::integral_constant<Interleaved, Interleaved::Min>{});
+    default: return f(std::integral_constant<Interleaved, Interleaved::Max>{});
   }
 }
 
@@ -425,24 +438,12 @@ void color_stage_fixed(const FragmentPlan& plan, const FragmentConstants& k, con
       const FragmentPlanKey& key = plan.key;
       if (key.alpha_func == 0 && !key.stencil && !key.depth && (wmask[0] & wmask[1] & wmask[2] & wmask[3])) {
         std::uint16_t* px = fb + 4 * pixel(0);
-        switch (op) {
-          case Interleaved::Copy: std::copy_n(in, 4 * n, px); return;
-          case Interleaved::Add: color_interleaved_all<Interleaved::Add>(m, in, px, 4 * n); return;
-          case Interleaved::Sub: color_interleaved_all<Interleaved::Sub>(m, in, px, 4 * n); return;
-          case Interleaved::RevSub: color_interleaved_all<Interleaved::RevSub>(m, in, px, 4 * n); return;
-          case Interleaved::Min: color_interleaved_all<Interleaved::Min>(m, in, px, 4 * n); return;
-          default: color_interleaved_all<Interleaved::Max>(m, in, px, 4 * n); return;
-        }
+        with_interleaved(op, [&](auto o) { color_interleaved_all<o.value>(m, in, px, 4 * n); });
+        return;
       }
     }
-    switch (op) {
-      case Interleaved::Copy: color_interleaved<Interleaved::Copy>(m, in, fb, pixel, n, wmask, alive); return;
-      case Interleaved::Add: color_interleaved<Interleaved::Add>(m, in, fb, pixel, n, wmask, alive); return;
-      case Interleaved::Sub: color_interleaved<Interleaved::Sub>(m, in, fb, pixel, n, wmask, alive); return;
-      case Interleaved::RevSub: color_interleaved<Interleaved::RevSub>(m, in, fb, pixel, n, wmask, alive); return;
-      case Interleaved::Min: color_interleaved<Interleaved::Min>(m, in, fb, pixel, n, wmask, alive); return;
-      default: color_interleaved<Interleaved::Max>(m, in, fb, pixel, n, wmask, alive); return;
-    }
+    with_interleaved(op, [&](auto o) { color_interleaved<o.value>(m, in, fb, pixel, n, wmask, alive); });
+    return;
   }
   FixedKernel<kM> kern;
   kern.M = k.color_max;
@@ -498,6 +499,11 @@ void color_stage(const FragmentPlan& plan, const FragmentConstants& k, const Fra
 // branch free, so the depth loads of a chunk overlap instead of waiting behind
 // mispredicted test results. A failing or dead fragment rewrites the stored
 // depth unchanged (its own pixel: no other fragment of the chunk touches it).
+// The alpha test on fixed codes: fragment j's alpha is in[4j + 3].
+void alpha_test_fixed(GLenum func, const std::uint16_t* in, std::uint32_t ref, int n, std::uint8_t* alive) {
+  for (int j = 0; j < n; ++j) alive[j] = test_func<std::uint32_t>(func, in[4 * j + 3], ref);
+}
+
 template <class Px, class Cmp>
 void depth_only(bool write, const std::uint32_t* z, std::uint32_t* depth, Px pixel, int n, std::uint8_t* alive, Cmp cmp) {
   for (int j = 0; j < n; ++j) {
@@ -532,28 +538,27 @@ void stencil_depth_stage(const FragmentPlanKey& key, const FragmentConstants& k,
     depth_only_stage(key.depth_func, key.depth_write, z, b.depth, pixel, n, alive);
     return;
   }
+  // The stencil test, then the depth test if enabled, with the stencil operations.
   const std::uint32_t ref = k.stencil_ref, vm = k.stencil_value_mask, wm = k.stencil_writemask, smax = k.stencil_max;
   const std::uint32_t ref_m = ref & vm;
   for (int j = 0; j < n; ++j) {
     if (!alive[j]) continue;
     const std::size_t p = pixel(j);
-    if (key.stencil) {
-      const std::uint32_t old = b.stencil[p];
-      if (!test_func<std::uint32_t>(key.stencil_func, ref_m, old & vm)) {
-        b.stencil[p] = static_cast<std::uint8_t>(stencil_write(key.sfail, old, ref, smax, wm));
-        alive[j] = 0;
-        continue;
-      }
+    const std::uint32_t old = b.stencil[p];
+    if (!test_func<std::uint32_t>(key.stencil_func, ref_m, old & vm)) {
+      b.stencil[p] = static_cast<std::uint8_t>(stencil_write(key.sfail, old, ref, smax, wm));
+      alive[j] = 0;
+      continue;
     }
     if (key.depth) {
       if (!test_func<std::uint32_t>(key.depth_func, z[j], b.depth[p])) {
-        if (key.stencil) b.stencil[p] = static_cast<std::uint8_t>(stencil_write(key.dpfail, b.stencil[p], ref, smax, wm));
+        b.stencil[p] = static_cast<std::uint8_t>(stencil_write(key.dpfail, old, ref, smax, wm));
         alive[j] = 0;
         continue;
       }
       if (key.depth_write) b.depth[p] = z[j];
     }
-    if (key.stencil) b.stencil[p] = static_cast<std::uint8_t>(stencil_write(key.dppass, b.stencil[p], ref, smax, wm));
+    b.stencil[p] = static_cast<std::uint8_t>(stencil_write(key.dppass, old, ref, smax, wm));
   }
 }
 
@@ -584,8 +589,7 @@ void run_fragment_plan(const FragmentPlan& plan, const FragmentConstants& k, con
     if (key.alpha_func != 0) {
       const GLenum f = key.alpha_func;
       if (fixed) {
-        for (int j = 0; j < n; ++j)
-          alive[j] = test_func<std::uint32_t>(f, sp.codes[4 * static_cast<std::size_t>(start + j) + 3], k.alpha_ref_code);
+        alpha_test_fixed(f, sp.codes.data() + 4 * static_cast<std::size_t>(start), k.alpha_ref_code, n, alive);
       } else {
         const bool f32 = key.arith == Arithmetic::Float32;
         for (int j = 0; j < n; ++j) {
@@ -616,8 +620,7 @@ void run_fragment_plan_pixels(const FragmentPlan& plan, const FragmentConstants&
     const std::uint16_t* in = codes + 4 * static_cast<std::size_t>(start);
     const ListPixels px{pixel + start};
     std::fill_n(alive, m, std::uint8_t{1});
-    if (key.alpha_func != 0)  // A_s OP ref
-      for (int j = 0; j < m; ++j) alive[j] = test_func<std::uint32_t>(key.alpha_func, in[4 * j + 3], k.alpha_ref_code);
+    if (key.alpha_func != 0) alpha_test_fixed(key.alpha_func, in, k.alpha_ref_code, m, alive);  // A_s OP ref
     if (key.stencil || key.depth) stencil_depth_stage(key, k, key.depth ? depth + start : nullptr, b, px, m, alive);
     if (!plan.write_color) continue;
     if (k.color_max == 255) color_stage_fixed<255>(plan, k, in, b.codes, px, m, alive);

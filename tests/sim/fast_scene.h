@@ -193,6 +193,18 @@ inline void random_vertex(Context& c, SceneRng& r, bool texel_aligned) {
   c.vertex3(x, y, r.d(-0.9, 0.9));
 }
 
+// With `percent` % chance a random texture `name` on `unit`, else the unit's 2D
+// texturing off (the active unit is left at 0 either way).
+inline void random_texture_or_off(Context& c, SceneRng& r, int unit, std::uint32_t name, int percent) {
+  if (r.b(percent)) {
+    random_texture(c, r, unit, name);
+    return;
+  }
+  c.activeTexture(gl::TEXTURE0 + static_cast<GLenum>(unit));
+  c.disable(gl::TEXTURE_2D);
+  c.activeTexture(gl::TEXTURE0);
+}
+
 // Random clear values (depth in [depth_lo, 1]), every buffer cleared, then a
 // random projection: how every random scene starts.
 inline void random_clear_and_projection(Context& c, SceneRng& r, double depth_lo) {
@@ -209,14 +221,7 @@ inline void draw_random_scene(Context& c, std::uint32_t seed, const SceneOptions
   random_clear_and_projection(c, r, 0);
   for (int pass = 0; pass < 2; ++pass) {
     if (opt.textures)
-      for (int u = 0; u < 2; ++u) {
-        if (r.b(60)) random_texture(c, r, u, static_cast<std::uint32_t>(1 + u + 2 * pass));
-        else {
-          c.activeTexture(gl::TEXTURE0 + static_cast<GLenum>(u));
-          c.disable(gl::TEXTURE_2D);
-          c.activeTexture(gl::TEXTURE0);
-        }
-      }
+      for (int u = 0; u < 2; ++u) random_texture_or_off(c, r, u, static_cast<std::uint32_t>(1 + u + 2 * pass), 60);
     if (opt.combiners && r.b(35)) random_combiners(c, r);
     else c.disable(gl::REGISTER_COMBINERS_NV);
     if (r.b(30)) c.enable(gl::COLOR_SUM); else c.disable(gl::COLOR_SUM);

@@ -59,14 +59,7 @@ void draw_mesh_scene(Context& c, std::uint32_t seed) {
     c.vertex3(v.x, v.y, v.z + dz);
   };
   for (int pass = 0; pass < 2; ++pass) {
-    for (int u = 0; u < 2; ++u) {
-      if (r.b(75)) random_texture(c, r, u, static_cast<std::uint32_t>(1 + u + 2 * pass));
-      else {
-        c.activeTexture(gl::TEXTURE0 + static_cast<GLenum>(u));
-        c.disable(gl::TEXTURE_2D);
-        c.activeTexture(gl::TEXTURE0);
-      }
-    }
+    for (int u = 0; u < 2; ++u) random_texture_or_off(c, r, u, static_cast<std::uint32_t>(1 + u + 2 * pass), 75);
     if (r.b(40)) random_combiners(c, r);
     else c.disable(gl::REGISTER_COMBINERS_NV);
     if (r.b(30)) c.enable(gl::COLOR_SUM); else c.disable(gl::COLOR_SUM);
