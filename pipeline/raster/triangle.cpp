@@ -102,14 +102,10 @@ TriangleCoverage rasterize_triangle(const std::array<SnappedVertex, 3>& vin, int
     run.x0 = static_cast<int>(lo);
     run.count = static_cast<int>(hi - lo + 1);
     run.weight.resize(weights == RunWeights::All ? static_cast<std::size_t>(run.count) : 1);
-    std::array<std::int64_t, 3> w{};
-    for (int k = 0; k < 3; ++k) w[idx[k]] = step[k] * lo + c0[k];
-    std::array<std::int64_t, 3> dw{};
-    for (int k = 0; k < 3; ++k) dw[idx[k]] = step[k];
-    for (auto& wi : run.weight) {
-      wi = w;
-      for (int k = 0; k < 3; ++k) w[k] += dw[k];
-    }
+    // Element by element: a whole-array copy of w just after these indexed
+    // stores made the load wait on them (a store-forwarding stall, per row).
+    for (std::size_t i = 0; i < run.weight.size(); ++i)
+      for (int k = 0; k < 3; ++k) run.weight[i][static_cast<std::size_t>(idx[k])] = step[k] * (lo + static_cast<std::int64_t>(i)) + c0[k];
     emit(cov, run);
   }
   return cov;
@@ -152,11 +148,10 @@ void interpolate_code_run(const std::array<std::int64_t, 3>& w0, const std::arra
       --dq;
     }
     for (int i = 1; i < n; ++i) {  // branch free: the carry is data-dependent
-      q += dq;
       r += dr;
-      const std::int64_t carry = r >= d;
-      r -= carry * d;
-      q += carry;
+      const bool carry = r >= d;
+      r = carry ? r - d : r;  // a conditional move (a multiply by the carry lengthened the chain)
+      q += dq + carry;
       out[i] = static_cast<std::uint32_t>(q);
     }
     return;
