@@ -35,6 +35,7 @@
 #include "sim/framebuffer.h"
 #include "sim/gl_error.h"
 #include "sim/probe.h"
+#include "sim/upload_cache.h"
 
 namespace ffsim {
 
@@ -414,6 +415,9 @@ class Context {
   // tests/*/test_fast_*.cpp tests draw random scenes both ways and compare.
   void set_fast_paths(bool on) { fast_paths_ = on; }
   bool fast_paths() const { return fast_paths_; }
+  // glTexImage1D/2D of client data through the upload cache (sim/upload_cache.h;
+  // with the fast paths only: off, every upload is computed).
+  const UploadCache& upload_cache() const { return upload_cache_; }
   // Runs of fragments the span path has shaded so far (tests check it is taken).
   std::uint64_t fast_runs() const { return fast_runs_; }
   // Threads (threads() > 1, no probe): the polygons of a glEnd are prepared in
@@ -602,6 +606,7 @@ class Context {
 
   // ==== [issue 10] state ====
   bool fast_paths_ = true;
+  UploadCache upload_cache_;
   std::uint64_t fast_runs_ = 0, split_batches_ = 0, split_triangles_ = 0, shared_vertex_draws_ = 0;
   // Scratch of the span path, reused from run to run (sim/draw_span.cpp).
   struct SpanScratch {

@@ -58,17 +58,39 @@ bool Context::tex_image(const char* fn, int dims, GLenum target, int level, GLen
     return error(gl::INVALID_VALUE, fn, "image size " + std::to_string(ow) + "x" + std::to_string(oh) +
                                             " (after convolution) is not 2^k + 2*border with 2^k <= " +
                                             std::to_string(pixel::kMaxTextureSize));
+  TextureObject& obj = bound_texture(active_unit_, target);
+  auto level_image = [&]() -> TextureImage& {
+    if (static_cast<int>(obj.levels.size()) <= level) obj.levels.resize(static_cast<std::size_t>(level) + 1);
+    obj.target = target;
+    ++obj.version;
+    return obj.levels[static_cast<std::size_t>(level)];
+  };
+  // Client data with the fast paths: the upload cache (sim/upload_cache.h) keyed
+  // by every input of the result (the profile is the context's, fixed).
+  std::string key;
+  if (fast_paths_ && data && !copy_xy && ow > 0 && oh > 0) {
+    const pixel::ClientLayout layout = pixel::client_layout(pixel_store_.unpack, width, height,
+                                                            pixel::color_format_components(format), pixel::type_size(type));
+    const std::size_t extent = layout.extent(width, height);
+    key.reserve(extent + 4096);
+    for (const int v : {dims, width, height, border, static_cast<int>(sizeof(T))}) append_bytes(key, v);
+    for (const GLenum e : {internalformat, format, type}) append_bytes(key, e);
+    append_transfer_key(key, pixel_store_.unpack, transfer_inputs());
+    key.append(static_cast<const char*>(data), extent);
+    if (const TextureImage* hit = upload_cache_.find(key)) {
+      level_image() = *hit;
+      return true;
+    }
+  }
   RgbaImage<T> img;
   if (copy_xy) img = read_color_rect<T>(copy_xy[0], copy_xy[1], width, height);
   else if (data) img = pixel::unpack_rgba<T>(data, width, height, format, type, pixel_store_.unpack);
   if (copy_xy || data) img = transfer(std::move(img), idims);
   else img = RgbaImage<T>(ow, oh);  // no data: contents undefined (GL121 §3.8.1); ffsim stores 0
   if (ow == 0 || oh == 0) img = RgbaImage<T>(0, 0);
-  TextureObject& obj = bound_texture(active_unit_, target);
-  if (static_cast<int>(obj.levels.size()) <= level) obj.levels.resize(static_cast<std::size_t>(level) + 1);
-  obj.levels[level] = pixel::make_texture_image(img, internalformat, *f, border, profile_);
-  obj.target = target;
-  ++obj.version;
+  TextureImage& ti = level_image();
+  ti = pixel::make_texture_image(img, internalformat, *f, border, profile_);
+  if (!key.empty()) upload_cache_.insert(std::move(key), ti);
   return true;
 }
 

@@ -111,6 +111,7 @@ struct Stage {
   int mag = 1;            // pixels per texel
   double bytes = 0;       // bytes per fragment the pass must read + write
   std::string bytes_note;
+  bool same_image = false;  // the upload: the same image every time (the upload cache's hit), else a new one
 };
 
 std::vector<Stage> stages() {
@@ -128,6 +129,8 @@ std::vector<Stage> stages() {
        "colour read 8 B + stencil read + write 2 B"},
       {"texture upload: colour matrix + post-CM table", "upload-transfer", "", 1, 6,
        "client RGBA8 read 4 B + texel write 2 B"},
+      {"texture upload, same image (cache hit)", "upload-transfer", "", 1, 6,
+       "client RGBA8 read 4 B + texel write 2 B", true},
   };
 }
 
@@ -164,7 +167,11 @@ StageRow run_stage(const Options& o, const Stage& st, int w, int repeat) {
       x ^= x << 5;
       client[i] = (i % 4 == 3) ? 255 : static_cast<std::uint8_t>(x >> 24);
     }
-    pass = [&] {
+    // A new image every time (one byte changed: the upload cache misses and the
+    // upload is computed), or the same image again (the cache's hit).
+    const bool same = st.same_image;
+    pass = [&, same] {
+      if (!same) ++client[0];
       ctx.texImage2D(gl::TEXTURE_2D, 0, gl::ALPHA8, w, w, 0, gl::RGBA, gl::UNSIGNED_BYTE, client.data());
       if (ctx.getError() != gl::NO_ERROR) throw std::runtime_error("texture upload: GL error");
     };

@@ -50,7 +50,7 @@ TEST_CASE("bench --perf: every stage runs and counts its fragments") {
   REQUIRE(r.code == 0);
   CHECK(r.out.find("Per-stage throughput, one core, 32x32 window") != std::string::npos);
   const auto rows = read_csv(dir / "perf_stages.csv");
-  REQUIRE(rows.size() == 10);  // header + 9 stages
+  REQUIRE(rows.size() == 11);  // header + 10 stages
   CHECK(rows[0][0] == "stage");
   CHECK(rows[0][2] == "fragments_per_pass");
   for (std::size_t i = 1; i < rows.size(); ++i) {
