@@ -42,11 +42,10 @@ void interpolate_colors(const std::array<const WindowVertex*, 3>& tv, bool secon
       for (int f = 0; f < n; ++f) out[4 * f + c] = k;
       continue;
     }
-    for (int r = 0, off = 0; r < runs.runs; off += runs.length[r], ++r) {  // the DDA restarts at every run
-      interpolate_code_run(runs.first[r], cov.dwdx, cov.area, code(tv[0], c), code(tv[1], c), code(tv[2], c),
-                           runs.length[r], lane.data());
-      for (int f = 0; f < runs.length[r]; ++f) out[4 * (off + f) + c] = static_cast<std::uint16_t>(lane[static_cast<std::size_t>(f)]);
-    }
+    // The DDA restarts at every run (one step division per triangle).
+    interpolate_code_runs(runs.first, runs.length, runs.runs, cov.dwdx, cov.area, code(tv[0], c), code(tv[1], c),
+                          code(tv[2], c), lane.data());
+    for (int f = 0; f < n; ++f) out[4 * f + c] = static_cast<std::uint16_t>(lane[static_cast<std::size_t>(f)]);
   }
 }
 
@@ -134,13 +133,10 @@ void Context::shade_runs_fast(const ShadingState& st, const ShadingPlan& plan,
                               SpanScratch& sc) {
   const int n = runs.count;
   const auto N = static_cast<std::size_t>(n);
-  int longest = 0;
-  for (int r = 0; r < runs.runs; ++r) longest = std::max(longest, runs.length[r]);
-  sc.lane.resize(static_cast<std::size_t>(longest));
+  sc.lane.resize(N);
   if (fb_.has_depth())
-    for (int r = 0, off = 0; r < runs.runs; off += runs.length[r], ++r)
-      interpolate_code_run(runs.first[r], cov.dwdx, cov.area, tv[0]->depth, tv[1]->depth, tv[2]->depth,
-                           runs.length[r], depth + off);
+    interpolate_code_runs(runs.first, runs.length, runs.runs, cov.dwdx, cov.area, tv[0]->depth, tv[1]->depth,
+                          tv[2]->depth, depth);
   interpolate_colors(tv, false, cov, runs, flat, sc.lane, out);  // the primary colour, shaded in place
   if (!shade) return;
 

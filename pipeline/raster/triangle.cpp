@@ -121,6 +121,34 @@ std::uint32_t interpolate_code(const std::array<std::int64_t, 3>& w, std::int64_
 // A·kmax at most this: interpolate_code_run's DDA fits int64 (see there).
 constexpr std::int64_t kSmallProduct = std::int64_t{1} << 59;
 
+namespace {
+
+// interpolate_code_run in 128-bit integers (A·max code > 2^59), n >= 1.
+void interpolate_code_run_wide(const std::array<std::int64_t, 3>& w0, const std::array<std::int64_t, 3>& dwdx,
+                               std::int64_t area, std::uint32_t k0, std::uint32_t k1, std::uint32_t k2, int n,
+                               std::uint32_t* out);
+
+// The int64 DDA of one run from its quotient and remainder (q, r) at the first
+// fragment, with the per-step (dq, dr), 0 <= dr < d.
+inline void code_run_int64(std::int64_t q, std::int64_t r, std::int64_t d, std::int64_t dq, std::int64_t dr, int n,
+                           std::uint32_t* out) {
+  out[0] = static_cast<std::uint32_t>(q);
+  for (int i = 1; i < n; ++i) {  // branch free: the carry is data-dependent
+    r += dr;
+    const bool carry = r >= d;
+    r = carry ? r - d : r;  // a conditional move (a multiply by the carry lengthened the chain)
+    q += dq + carry;
+    out[i] = static_cast<std::uint32_t>(q);
+  }
+}
+
+bool small_product(std::int64_t area, std::uint32_t kmax) {
+  __extension__ typedef unsigned __int128 u128;
+  return static_cast<u128>(area) * kmax <= static_cast<u128>(kSmallProduct);  // (area > 0)
+}
+
+}  // namespace
+
 void interpolate_code_run(const std::array<std::int64_t, 3>& w0, const std::array<std::int64_t, 3>& dwdx,
                           std::int64_t area, std::uint32_t k0, std::uint32_t k1, std::uint32_t k2, int n,
                           std::uint32_t* out) {
@@ -129,33 +157,75 @@ void interpolate_code_run(const std::array<std::int64_t, 3>& w0, const std::arra
     std::fill_n(out, n, k0);
     return;
   }
-  const std::uint32_t kmax = std::max({k0, k1, k2});
-  __extension__ typedef unsigned __int128 u128;
-  if (static_cast<u128>(area) * kmax <= static_cast<u128>(kSmallProduct)) {  // (area > 0)
+  if (small_product(area, std::max({k0, k1, k2}))) {
     // The same quotients in int64 (hardware division, not __divmodti4): inside the
     // triangle the weights are >= 0 with Σ w_k = A, so 0 <= Σ w_k·k_k <= A·kmax
     // < 2^59; for n >= 2, |dwdx_k| = |w_k(1) − w_k(0)| <= A, so |Σ dwdx_k·k_k| <= 3·A·kmax.
     // Every term below stays under 2^62.
     const std::int64_t d = 2 * area;
     const std::int64_t x0 = 2 * (w0[0] * k0 + w0[1] * k1 + w0[2] * k2) + area;  // >= 0
-    std::int64_t q = x0 / d, r = x0 % d;
-    out[0] = static_cast<std::uint32_t>(q);
-    if (n == 1) return;
-    const std::int64_t step = 2 * (dwdx[0] * k0 + dwdx[1] * k1 + dwdx[2] * k2);
-    std::int64_t dq = step / d, dr = step % d;
-    if (dr < 0) {  // floor division: remainder in [0, d)
-      dr += d;
-      --dq;
+    std::int64_t dq = 0, dr = 0;
+    if (n >= 2) {
+      const std::int64_t step = 2 * (dwdx[0] * k0 + dwdx[1] * k1 + dwdx[2] * k2);
+      dq = step / d;
+      dr = step % d;
+      if (dr < 0) {  // floor division: remainder in [0, d)
+        dr += d;
+        --dq;
+      }
     }
-    for (int i = 1; i < n; ++i) {  // branch free: the carry is data-dependent
-      r += dr;
-      const bool carry = r >= d;
-      r = carry ? r - d : r;  // a conditional move (a multiply by the carry lengthened the chain)
-      q += dq + carry;
-      out[i] = static_cast<std::uint32_t>(q);
-    }
+    code_run_int64(x0 / d, x0 % d, d, dq, dr, n, out);
     return;
   }
+  interpolate_code_run_wide(w0, dwdx, area, k0, k1, k2, n, out);
+}
+
+void interpolate_code_runs(const std::array<std::int64_t, 3>* first, const int* length, int runs,
+                           const std::array<std::int64_t, 3>& dwdx, std::int64_t area, std::uint32_t k0,
+                           std::uint32_t k1, std::uint32_t k2, std::uint32_t* out) {
+  if (k0 == k1 && k1 == k2) {
+    int n = 0;
+    for (int r = 0; r < runs; ++r) n += std::max(length[r], 0);
+    std::fill_n(out, n, k0);
+    return;
+  }
+  if (!small_product(area, std::max({k0, k1, k2}))) {
+    for (int r = 0; r < runs; out += std::max(length[r], 0), ++r)
+      if (length[r] > 0) interpolate_code_run_wide(first[r], dwdx, area, k0, k1, k2, length[r], out);
+    return;
+  }
+  // interpolate_code_run's int64 DDA, run after run, the step's quotient and
+  // remainder divided once per triangle instead of once per run: the same
+  // (dq, dr), computed at the first run of two or more fragments (only such a run
+  // bounds |dwdx_k| by A; a triangle of one-fragment runs never steps).
+  const std::int64_t d = 2 * area;
+  std::int64_t dq = 0, dr = 0;
+  bool stepped = false;
+  for (int r = 0; r < runs; ++r) {
+    const int n = length[r];
+    if (n <= 0) continue;
+    if (n >= 2 && !stepped) {
+      const std::int64_t step = 2 * (dwdx[0] * k0 + dwdx[1] * k1 + dwdx[2] * k2);
+      dq = step / d;
+      dr = step % d;
+      if (dr < 0) {
+        dr += d;
+        --dq;
+      }
+      stepped = true;
+    }
+    const std::array<std::int64_t, 3>& w0 = first[r];
+    const std::int64_t x0 = 2 * (w0[0] * k0 + w0[1] * k1 + w0[2] * k2) + area;  // >= 0
+    code_run_int64(x0 / d, x0 % d, d, dq, dr, n, out);
+    out += n;
+  }
+}
+
+namespace {
+
+void interpolate_code_run_wide(const std::array<std::int64_t, 3>& w0, const std::array<std::int64_t, 3>& dwdx,
+                               std::int64_t area, std::uint32_t k0, std::uint32_t k1, std::uint32_t k2, int n,
+                               std::uint32_t* out) {
   __extension__ typedef __int128 i128;
   const i128 D = 2 * i128{area};
   const i128 x0 = 2 * (i128{w0[0]} * k0 + i128{w0[1]} * k1 + i128{w0[2]} * k2) + area;  // >= 0 inside
@@ -193,5 +263,7 @@ void interpolate_code_run(const std::array<std::int64_t, 3>& w0, const std::arra
     }
   }
 }
+
+}  // namespace
 
 }  // namespace ffsim

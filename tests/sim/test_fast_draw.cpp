@@ -108,14 +108,65 @@ TEST_CASE("fast draw: interpolate_code_run equals interpolate_code on random run
     if (k % 8 == 4) k1 = k0;       // two equal: still the DDA
     const std::uint32_t kmax = std::max({k0, k1, k2});
     if (!runs.empty() && kmax > 0 && cov.area > (std::int64_t{1} << 59) / kmax) ++wide;
+    std::vector<std::array<std::int64_t, 3>> first;
+    std::vector<int> length;
+    std::vector<std::uint32_t> expected;
     for (const CoverageRun& run : runs) {
       std::vector<std::uint32_t> out(run.weight.size());
       interpolate_code_run(run.weight[0], cov.dwdx, cov.area, k0, k1, k2, static_cast<int>(out.size()), out.data());
-      for (std::size_t i = 0; i < out.size(); ++i)
+      for (std::size_t i = 0; i < out.size(); ++i) {
         REQUIRE(out[i] == interpolate_code(run.weight[i], cov.area, k0, k1, k2));
+        expected.push_back(out[i]);
+      }
+      first.push_back(run.weight[0]);
+      length.push_back(static_cast<int>(run.weight.size()));
     }
+    // All runs of the triangle at once (one step division per triangle).
+    std::vector<std::uint32_t> all(expected.size());
+    interpolate_code_runs(first.data(), length.data(), static_cast<int>(first.size()), cov.dwdx, cov.area, k0, k1, k2,
+                          all.data());
+    REQUIRE(all == expected);
   }
   CHECK(wide > 150);  // (236 with this seed: the 128-bit form is exercised)
+}
+
+TEST_CASE("fast draw: interpolate_code_runs on slivers (one-fragment runs with huge gradients) and mixed runs") {
+  // A long thin triangle covers one fragment per row: its x gradient is far above
+  // A, which only a run of two or more fragments bounds; the step must not be
+  // formed from such runs alone (int64 overflow). Then a wider row appears.
+  SceneRng r(78);
+  int slivers = 0;
+  for (int k = 0; k < 2000; ++k) {
+    const std::int64_t S = 8, len = std::int64_t{r.i(200, 1 << 14)} << S;
+    const std::int64_t x = std::int64_t{r.i(0, 50)} << S, y = std::int64_t{r.i(0, 50)} << S;
+    // (x, y), (x + 1.3 px, y + len), (x + 0.4 px + w, y + len/2): nearly vertical and thin.
+    std::array<SnappedVertex, 3> v{{{x, y}, {x + 333, y + len}, {x + 100 + r.i(0, k % 2 ? 600 : 40), y + len / 2}}};
+    std::vector<std::array<std::int64_t, 3>> first;
+    std::vector<int> length;
+    std::vector<std::uint32_t> expected;
+    const TriangleCoverage cov = rasterize_triangle(v, static_cast<int>(S), -10, -10, 1 << 20, 1 << 20,
+                                                    [&](const TriangleCoverage& c, const CoverageRun& run) {
+                                                      first.push_back(run.weight[0]);
+                                                      length.push_back(static_cast<int>(run.weight.size()));
+                                                      for (const auto& w : run.weight) expected.push_back(interpolate_code(w, c.area, 0, 0, 0));
+                                                    });
+    if (first.empty()) continue;
+    const std::uint32_t k0 = static_cast<std::uint32_t>(r.i(0, 16777215)), k1 = static_cast<std::uint32_t>(r.i(0, 255)),
+                        k2 = k % 3 == 0 ? 0xFFFFFFFFu : static_cast<std::uint32_t>(r.i(0, 65535));
+    std::size_t at = 0;
+    for (std::size_t i = 0; i < first.size(); ++i)
+      for (int j = 0; j < length[i]; ++j, ++at) {
+        std::array<std::int64_t, 3> w = first[i];
+        for (int q = 0; q < 3; ++q) w[static_cast<std::size_t>(q)] += j * cov.dwdx[static_cast<std::size_t>(q)];
+        expected[at] = interpolate_code(w, cov.area, k0, k1, k2);
+      }
+    slivers += std::all_of(length.begin(), length.end(), [](int n) { return n == 1; });
+    std::vector<std::uint32_t> all(expected.size());
+    interpolate_code_runs(first.data(), length.data(), static_cast<int>(first.size()), cov.dwdx, cov.area, k0, k1, k2,
+                          all.data());
+    REQUIRE(all == expected);
+  }
+  CHECK(slivers > 100);  // triangles made only of one-fragment runs were drawn
 }
 
 TEST_CASE("fast draw: vertices shared by a glEnd's polygons (window form once), every mode, 1 and 2 threads") {
