@@ -104,9 +104,15 @@ void texture_coordinates(const std::array<const WindowVertex*, 3>& tv, int u, co
     const std::array<std::int64_t, 3>& w = runs.first[r];
     const int n = runs.length[r];
     if (exact) {
+      // n rounded up to 4 (the vector width): the scalar remainder loop cost more
+      // than the extra lanes on runs of a few fragments. The extra lanes are the
+      // next pixels' values (any double, inf or NaN: nothing traps), written past
+      // the run into the next run's slots, which that run then overwrites; s and t
+      // hold 3 slots more than the fragments.
+      const int n4 = (n + 3) & ~3;
       const Coords f{static_cast<double>(w[0]), static_cast<double>(w[1]), static_cast<double>(w[2])};
-      if (unit_q) coordinates_stepped<true>(c0, c1, c2, a, f, d, n, s + off, t + off);
-      else coordinates_stepped<false>(c0, c1, c2, a, f, d, n, s + off, t + off);
+      if (unit_q) coordinates_stepped<true>(c0, c1, c2, a, f, d, n4, s + off, t + off);
+      else coordinates_stepped<false>(c0, c1, c2, a, f, d, n4, s + off, t + off);
       continue;
     }
     for (int i = 0; i < n; ++i) {  // the reference's conversions of the int64 weights
@@ -149,8 +155,8 @@ void Context::shade_runs_fast(const ShadingState& st, const ShadingPlan& plan,
   }
   // Texture coordinates (the per-fragment path's operations exactly: Σ in k
   // order from 0, divided by A, then s/q and t/q) and the span's texels.
-  sc.s.resize(N);
-  sc.t.resize(N);
+  sc.s.resize(N + 3);  // (texture_coordinates writes up to 3 slots past the last run)
+  sc.t.resize(N + 3);
   int coords_of = -1;  // the unit whose coordinates sc.s, sc.t hold
   auto same_coords = [&](int a, int b) {  // the same s/w, t/w, q/w at all three vertices
     for (int k = 0; k < 3; ++k)
