@@ -447,13 +447,36 @@ void color_stage_fixed(const FragmentPlan& plan, const FragmentConstants& k, con
   }
   FixedKernel<kM> kern;
   kern.M = k.color_max;
-  for (int j = 0; j < n; ++j)
+  int j1 = 0;
+#ifdef __SSE4_1__
+  // Four pixels' codes (two registers of interleaved R, G, B, A) transposed to
+  // the four channel arrays, zero-extended to 32 bits.
+  auto split4 = [](__m128i x01, __m128i x23, std::uint32_t (&to)[4][kChunk], int j) {
+    const __m128i t0 = _mm_unpacklo_epi16(x01, x23), t1 = _mm_unpackhi_epi16(x01, x23);  // r0 r2 g0 g2 .., r1 r3 ..
+    const __m128i rg = _mm_unpacklo_epi16(t0, t1), ba = _mm_unpackhi_epi16(t0, t1);      // r0..r3 g0..g3, b0..b3 a0..a3
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(to[0] + j), _mm_cvtepu16_epi32(rg));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(to[1] + j), _mm_cvtepu16_epi32(_mm_srli_si128(rg, 8)));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(to[2] + j), _mm_cvtepu16_epi32(ba));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(to[3] + j), _mm_cvtepu16_epi32(_mm_srli_si128(ba, 8)));
+  };
+  for (; j1 + 4 <= n; j1 += 4)
+    split4(_mm_loadu_si128(reinterpret_cast<const __m128i*>(in + 4 * j1)),
+           _mm_loadu_si128(reinterpret_cast<const __m128i*>(in + 4 * j1 + 8)), kern.src, j1);
+#endif
+  for (int j = j1; j < n; ++j)
     for (int q = 0; q < 4; ++q) kern.src[q][j] = in[4 * j + q];
-  if (plan.read_dst_color)
-    for (int j = 0; j < n; ++j) {
+  if (plan.read_dst_color) {
+    int j2 = 0;
+#ifdef __SSE4_1__
+    auto px64 = [&](int j) { return _mm_loadl_epi64(reinterpret_cast<const __m128i*>(fb + 4 * pixel(j))); };
+    for (; j2 + 4 <= n; j2 += 4)
+      split4(_mm_unpacklo_epi64(px64(j2), px64(j2 + 1)), _mm_unpacklo_epi64(px64(j2 + 2), px64(j2 + 3)), kern.dst, j2);
+#endif
+    for (int j = j2; j < n; ++j) {
       const std::uint16_t* px = fb + 4 * pixel(j);
       for (int q = 0; q < 4; ++q) kern.dst[q][j] = px[q];
     }
+  }
   const std::uint32_t* kc = k.blend_color_code.data();
   std::uint32_t out[4][kChunk];
   std::uint16_t wmask[4];
@@ -464,7 +487,35 @@ void color_stage_fixed(const FragmentPlan& plan, const FragmentConstants& k, con
     else std::fill_n(out[c], n, 0u);
   }
   // Masked store: written channels of surviving fragments only.
-  for (int j = 0; j < n; ++j) {
+  int j0 = 0;
+#ifdef __SSE4_1__
+  {  // four fragments at a time: the channel arrays packed to 16 bits and transposed
+     // to pixels (codes <= M < 2^16: packus keeps them), each pixel blended as in
+     // color_interleaved
+    const __m128i vw = _mm_setr_epi16(static_cast<std::int16_t>(wmask[0]), static_cast<std::int16_t>(wmask[1]),
+                                      static_cast<std::int16_t>(wmask[2]), static_cast<std::int16_t>(wmask[3]),
+                                      static_cast<std::int16_t>(wmask[0]), static_cast<std::int16_t>(wmask[1]),
+                                      static_cast<std::int16_t>(wmask[2]), static_cast<std::int16_t>(wmask[3]));
+    auto load4 = [](const std::uint32_t* p) { return _mm_loadu_si128(reinterpret_cast<const __m128i*>(p)); };
+    auto put = [&](int j, __m128i pixel_codes) {  // pixel_codes: this pixel's four codes in the low 64 bits
+      std::uint16_t* px = fb + 4 * pixel(j);
+      const __m128i d = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(px));
+      const __m128i w = _mm_and_si128(vw, _mm_set1_epi16(static_cast<std::int16_t>(-static_cast<int>(alive[j] != 0))));
+      _mm_storel_epi64(reinterpret_cast<__m128i*>(px), _mm_or_si128(_mm_and_si128(pixel_codes, w), _mm_andnot_si128(w, d)));
+    };
+    for (; j0 + 4 <= n; j0 += 4) {
+      const __m128i rg = _mm_packus_epi32(load4(out[0] + j0), load4(out[1] + j0));  // r0..r3 g0..g3
+      const __m128i ba = _mm_packus_epi32(load4(out[2] + j0), load4(out[3] + j0));  // b0..b3 a0..a3
+      const __m128i rb = _mm_unpacklo_epi16(rg, ba), ga = _mm_unpackhi_epi16(rg, ba);  // r0 b0 r1 b1 .., g0 a0 ..
+      const __m128i p01 = _mm_unpacklo_epi16(rb, ga), p23 = _mm_unpackhi_epi16(rb, ga);  // r0 g0 b0 a0 r1 g1 b1 a1, ..
+      put(j0, p01);
+      put(j0 + 1, _mm_unpackhi_epi64(p01, p01));
+      put(j0 + 2, p23);
+      put(j0 + 3, _mm_unpackhi_epi64(p23, p23));
+    }
+  }
+#endif
+  for (int j = j0; j < n; ++j) {
     const std::uint16_t a = alive[j] ? 0xFFFF : 0;
     std::uint16_t* px = fb + 4 * pixel(j);
     for (int c = 0; c < 4; ++c) {
