@@ -4,7 +4,7 @@
 #include <cstring>
 #include <type_traits>
 
-#ifdef __AVX2__
+#if defined(__AVX2__) || defined(__SSE4_1__)
 #include <immintrin.h>
 #endif
 
@@ -70,6 +70,27 @@ struct Kernel {
   // Input entry (register_combiners.cpp's Entry): identity when the grids agree.
   void load(const std::uint16_t* src, int bits, int comps, int reg_index, int n, std::size_t first) {
     const bool identity = static_cast<std::uint32_t>(M()) == unorm_max(bits);
+#ifdef __SSE4_1__
+    if (identity && comps == 4) {  // four fragments at a time: interleaved RGBA codes transposed to the four lanes
+      std::int32_t(&r)[4][kChunk] = reg[reg_index];
+      const std::uint16_t* s = src + 4 * first;
+      int i = 0;
+      for (; i + 4 <= n; i += 4) {
+        const __m128i x01 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(s + 4 * i));
+        const __m128i x23 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(s + 4 * i + 8));
+        const __m128i t0 = _mm_unpacklo_epi16(x01, x23), t1 = _mm_unpackhi_epi16(x01, x23);
+        const __m128i rg = _mm_unpacklo_epi16(t0, t1), ba = _mm_unpackhi_epi16(t0, t1);  // r0..r3 g0..g3, b.. a..
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(r[0] + i), _mm_cvtepu16_epi32(rg));
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(r[1] + i), _mm_cvtepu16_epi32(_mm_srli_si128(rg, 8)));
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(r[2] + i), _mm_cvtepu16_epi32(ba));
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(r[3] + i), _mm_cvtepu16_epi32(_mm_srli_si128(ba, 8)));
+      }
+      for (; i < n; ++i)
+        for (int c = 0; c < 4; ++c) r[c][i] = s[4 * i + c];
+      for (int c = 0; c < 4; ++c) std::fill(r[c] + n, r[c] + lanes8(n), 0);  // the scratch lanes (see run)
+      return;
+    }
+#endif
     for (int c = 0; c < comps; ++c) {
       std::int32_t* d = reg[reg_index][c];
       const std::uint16_t* s = src + 4 * first + static_cast<std::size_t>(c);
