@@ -325,23 +325,29 @@ namespace {
 // value is N/D with D = m (REPLACE, ADD, SUBTRACT), 2m (ADD_SIGNED) or m^2
 // (MODULATE, INTERPOLATE, DOT3); after × scale it is clamped to [0, 1] and
 // rounded half up: code = floor(N·m/D + 1/2).
+// kM: m when fixed at compile time (255: every division below is by a constant,
+// which the compiler turns into a multiply), 0: m at run time.
+template <std::int64_t kM>
 struct CombineInt {
-  std::int64_t m;
+  std::int64_t m_rt;
+  std::int64_t max() const { return kM ? kM : m_rt; }
   std::int64_t operand(GLenum op, const std::uint16_t* v, int c) const {
     switch (op) {
-      case gl::ONE_MINUS_SRC_COLOR: return m - v[c];
+      case gl::ONE_MINUS_SRC_COLOR: return max() - v[c];
       case gl::SRC_ALPHA: return v[3];
-      case gl::ONE_MINUS_SRC_ALPHA: return m - v[3];
+      case gl::ONE_MINUS_SRC_ALPHA: return max() - v[3];
       default: return v[c];  // SRC_COLOR
     }
   }
   // clamp01(N/D) rounded to a code, for D in {m, 2m, m^2}.
   std::uint16_t finish(std::int64_t N, std::int64_t D) const {
+    const std::int64_t m = max();
     if (N <= 0) return 0;
     if (N >= D) return static_cast<std::uint16_t>(m);
     return static_cast<std::uint16_t>((2 * N * m + D) / (2 * D));
   }
   std::uint16_t function(GLenum f, std::int64_t a0, std::int64_t a1, std::int64_t a2, std::int64_t s) const {
+    const std::int64_t m = max();
     switch (f) {
       case gl::REPLACE: return finish(s * a0, m);
       case gl::ADD: return finish(s * (a0 + a1), m);
@@ -353,9 +359,71 @@ struct CombineInt {
   }
 };
 
+// DOT3_RGB(A)(_EXT) with 8-bit codes (m = 255), the alpha either the dot product
+// (DOT3_RGBA) or REPLACE: combine_span_fixed's numbers without its per-fragment
+// switches and branches. Sources and operands are chosen once (a source is a
+// pointer and a stride: 4 codes per fragment, 0 for the constant colour), and
+// finish(N, m²) is computed branch free:
+//   q = floor((2·max(N, 0)·m + m²) / 2m²), then min(q, m)
+// gives 0 for N <= 0 (m²/2m² < 1), N's rounding for 0 < N < m², and m for
+// N >= m² (q >= floor(m + 1/2) = m); finish(N, m) of REPLACE is min(N, m) for
+// N >= 0 ((2Nm + m)/2m = N + 1/2). Every value stays below 2^31.
+// Returns false (nothing written) for any other combination.
+bool combine_dot3_span_8(const TexEnvState& env, const std::uint16_t* previous, const std::uint16_t* primary,
+                         const std::uint16_t* texel, int n, std::uint16_t* out) {
+  constexpr std::int32_t m = 255, m2 = m * m;
+  if (!is_dot3(env.combine_rgb)) return false;
+  const bool ext = env.combine_rgb == gl::DOT3_RGB_EXT || env.combine_rgb == gl::DOT3_RGBA_EXT;
+  const bool rgba = env.combine_rgb == gl::DOT3_RGBA || env.combine_rgb == gl::DOT3_RGBA_EXT;
+  if (!rgba && env.combine_alpha != gl::REPLACE) return false;
+  std::uint16_t cc[4];
+  for (int c = 0; c < 4; ++c) cc[c] = static_cast<std::uint16_t>(unorm_from_double(env.color[c], 8));
+  struct Source {
+    const std::uint16_t* base;
+    std::size_t stride;
+  };
+  auto source = [&](GLenum which) -> Source {
+    switch (which) {
+      case gl::TEXTURE: return {texel, 4};
+      case gl::CONSTANT: return {cc, 0};
+      case gl::PRIMARY_COLOR: return {primary, 4};
+      default: return {previous, 4};  // PREVIOUS (`out` may alias it: each fragment is read before it is written)
+    }
+  };
+  // Operand: the component (c, or alpha) and whether it is inverted (m − v).
+  auto alpha_of = [](GLenum op) { return op == gl::SRC_ALPHA || op == gl::ONE_MINUS_SRC_ALPHA; };
+  auto inverted = [](GLenum op) { return op == gl::ONE_MINUS_SRC_COLOR || op == gl::ONE_MINUS_SRC_ALPHA; };
+  const Source s0 = source(env.source_rgb[0]), s1 = source(env.source_rgb[1]), sa = source(env.source_alpha[0]);
+  const bool a0 = alpha_of(env.operand_rgb[0]), a1 = alpha_of(env.operand_rgb[1]);
+  const std::int32_t i0 = inverted(env.operand_rgb[0]) ? 1 : 0, i1 = inverted(env.operand_rgb[1]) ? 1 : 0;
+  const std::int32_t ia = inverted(env.operand_alpha[0]) ? 1 : 0;  // (the alpha component either way)
+  const std::int32_t srgb = static_cast<std::int32_t>(env.rgb_scale), salpha = static_cast<std::int32_t>(env.alpha_scale);
+  auto operand = [m](std::int32_t v, std::int32_t inv) { return inv ? m - v : v; };
+  auto finish_m2 = [](std::int32_t N) {
+    const auto q = static_cast<std::uint32_t>(2 * std::max(N, 0) * m + m2) / static_cast<std::uint32_t>(2 * m2);
+    return static_cast<std::uint16_t>(std::min<std::uint32_t>(q, m));
+  };
+  for (int f = 0; f < n; ++f) {
+    const std::uint16_t* x = s0.base + s0.stride * static_cast<std::size_t>(f);
+    const std::uint16_t* y = s1.base + s1.stride * static_cast<std::size_t>(f);
+    const std::uint16_t* z = sa.base + sa.stride * static_cast<std::size_t>(f);
+    std::int32_t d = 0;  // Σ (2k0 − m)(2k1 − m), |d| <= 3m²
+    for (int c = 0; c < 3; ++c)
+      d += (2 * operand(x[a0 ? 3 : c], i0) - m) * (2 * operand(y[a1 ? 3 : c], i1) - m);
+    const std::uint16_t v = finish_m2(ext ? d : d * srgb);
+    const std::uint16_t alpha = rgba ? finish_m2(ext ? d : d * salpha)
+                                     : static_cast<std::uint16_t>(std::min(salpha * operand(z[3], ia), m));
+    std::uint16_t* o = out + 4 * static_cast<std::size_t>(f);
+    o[0] = o[1] = o[2] = v;
+    o[3] = alpha;
+  }
+  return true;
+}
+
+template <std::int64_t kM>
 bool combine_span_fixed(const TexEnvState& env, const std::uint16_t* previous, const std::uint16_t* primary,
                         const std::uint16_t* texel, int n, int bits, std::uint16_t* out) {
-  const CombineInt k{static_cast<std::int64_t>(unorm_max(bits))};
+  const CombineInt<kM> k{static_cast<std::int64_t>(unorm_max(bits))};
   std::uint16_t cc[4];
   for (int c = 0; c < 4; ++c) cc[c] = static_cast<std::uint16_t>(unorm_from_double(env.color[c], bits));
   const GLenum frgb = env.combine_rgb;
@@ -386,10 +454,10 @@ bool combine_span_fixed(const TexEnvState& env, const std::uint16_t* previous, c
       // 4·Σ (a0 − ½)(a1 − ½) = Σ (2k0 − m)(2k1 − m) / m².
       std::int64_t d = 0;
       for (int c = 0; c < 3; ++c)
-        d += (2 * k.operand(env.operand_rgb[0], rgb[0], c) - k.m) * (2 * k.operand(env.operand_rgb[1], rgb[1], c) - k.m);
-      const std::uint16_t v = k.finish(dot3_ext ? d : d * srgb, k.m * k.m);
+        d += (2 * k.operand(env.operand_rgb[0], rgb[0], c) - k.max()) * (2 * k.operand(env.operand_rgb[1], rgb[1], c) - k.max());
+      const std::uint16_t v = k.finish(dot3_ext ? d : d * srgb, k.max() * k.max());
       r[0] = r[1] = r[2] = v;
-      if (dot3_rgba) r[3] = k.finish(dot3_ext ? d : d * salpha, k.m * k.m);
+      if (dot3_rgba) r[3] = k.finish(dot3_ext ? d : d * salpha, k.max() * k.max());
     } else {
       for (int c = 0; c < 3; ++c)
         r[c] = k.function(frgb, k.operand(env.operand_rgb[0], rgb[0], c), k.operand(env.operand_rgb[1], rgb[1], c),
@@ -410,7 +478,11 @@ bool texture_environment_span_fixed(const TexEnvState& env, BaseFormat base, int
                                     const std::uint16_t* previous, const std::uint16_t* primary,
                                     const std::uint16_t* texel, int n, const ColorFormat& fmt, std::uint16_t* out) {
   if (!fmt.fixed() || texel_bits != fmt.bits) return false;
-  if (env.mode == gl::COMBINE) return combine_span_fixed(env, previous, primary, texel, n, fmt.bits, out);
+  if (env.mode == gl::COMBINE) {
+    if (fmt.bits == 8 && combine_dot3_span_8(env, previous, primary, texel, n, out)) return true;
+    return fmt.bits == 8 ? combine_span_fixed<255>(env, previous, primary, texel, n, fmt.bits, out)
+                         : combine_span_fixed<0>(env, previous, primary, texel, n, fmt.bits, out);
+  }
   // The classic() table above, per channel.
   const bool hc = has_color(base), ha = has_alpha(base);
   std::array<SpanOp, 4> op{SpanOp::Keep, SpanOp::Keep, SpanOp::Keep, SpanOp::Keep};

@@ -132,8 +132,16 @@ TexEnvState random_env(std::mt19937& g) {
 }
 
 // Returns how many fragments differ between the span kernel and the reference.
-int compare_env(std::mt19937& g, int bits, bool plant) {
+// dot3: COMBINE with a DOT3 function, the alpha REPLACE half of the time (the
+// 8-bit DOT3 kernel, combine_dot3_span_8).
+int compare_env(std::mt19937& g, int bits, bool plant, bool dot3 = false) {
   TexEnvState env = random_env(g);
+  if (dot3) {
+    const GLenum f[] = {gl::DOT3_RGB, gl::DOT3_RGBA, gl::DOT3_RGB_EXT, gl::DOT3_RGBA_EXT};
+    env.mode = gl::COMBINE;
+    env.combine_rgb = pick(g, f);
+    if (g() % 2) env.combine_alpha = gl::REPLACE;
+  }
   const BaseFormat base = pick(g, kBases);
   const ColorFormat fmt{Arithmetic::Fixed, bits};
   const std::uint32_t max = (1u << bits) - 1;
@@ -194,6 +202,14 @@ TEST_CASE("fast texture: texture_environment_span_fixed == texture_environment, 
     const int bits = it % 4 == 0 ? 8 : it % 4 == 1 ? 10 : it % 4 == 2 ? 12 : 1 + static_cast<int>(g() % 16);
     REQUIRE(compare_env(g, bits, false) == 0);
   }
+}
+
+TEST_CASE("fast texture: 8-bit DOT3 environments (every source, operand, scale; in place or not) == texture_environment") {
+  std::mt19937 g(45);
+  for (int it = 0; it < 4000; ++it) REQUIRE(compare_env(g, 8, false, true) == 0);
+  int detected = 0;  // and a planted difference (another RGB scale) is seen
+  for (int it = 0; it < 200; ++it) detected += compare_env(g, 8, true, true) > 0;
+  CHECK(detected > 50);
 }
 
 TEST_CASE("fast texture: the environment comparison detects a planted difference, and other widths are refused") {
