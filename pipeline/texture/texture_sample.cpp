@@ -8,6 +8,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <string>
 
 #include "pipeline/number/unorm.h"
@@ -560,11 +561,17 @@ void span_linear_repeat(const SpanLevel& L, const double* s, const double* t, in
       continue;
     }
 #ifdef __SSE4_1__
-    if constexpr (NC == 4) {  // the four components in one 128-bit register, the same integers
+    if constexpr (NC == 4 || NC == 3) {  // the components in one 128-bit register, the same integers
       const __m128i vhalf = _mm_set1_epi32(static_cast<int>(half));
       const __m128i shift = _mm_cvtsi32_si128(B2);
       auto load = [](const std::uint16_t* q) {
-        return _mm_cvtepu16_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(q)));
+        if constexpr (NC == 4) {
+          return _mm_cvtepu16_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(q)));
+        } else {  // R, G, B only (a fourth code would read past the image's last texel); lane 3 is 0
+          std::uint32_t rg;
+          std::memcpy(&rg, q, sizeof rg);
+          return _mm_cvtepu16_epi32(_mm_insert_epi16(_mm_cvtsi32_si128(static_cast<int>(rg)), q[2], 2));
+        }
       };
       for (int f = 0; f < m; ++f, o += 4) {
         const std::uint32_t a = wx[f], bb = wy[f];
@@ -576,7 +583,9 @@ void span_linear_repeat(const SpanLevel& L, const double* s, const double* t, in
         sum = _mm_add_epi32(sum, _mm_mullo_epi32(load(texel(x1[f], y1[f])), _mm_set1_epi32(w11)));
         // (sum + half) >> 2B < 2^16: packus keeps it unchanged.
         const __m128i r = _mm_srl_epi32(_mm_add_epi32(sum, vhalf), shift);
-        _mm_storel_epi64(reinterpret_cast<__m128i*>(o), _mm_packus_epi32(r, r));
+        __m128i codes = _mm_packus_epi32(r, r);
+        if constexpr (NC == 3) codes = _mm_insert_epi16(codes, static_cast<int>(L.one_code), 3);  // RGB: (R, G, B, 1)
+        _mm_storel_epi64(reinterpret_cast<__m128i*>(o), codes);
       }
       continue;
     }
