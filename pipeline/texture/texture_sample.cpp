@@ -553,6 +553,25 @@ void span_linear_repeat(const SpanLevel& L, const double* s, const double* t, in
     std::uint16_t* o = out + 4 * static_cast<std::size_t>(first);
     std::uint32_t k[4] = {0, 0, 0, 0};
     if (any == 0) {  // every weight (1, 0, 0, 0): the texel at (i0, j0)
+      if constexpr (NC == 4) {
+        // One row of texels in order (a screen-aligned quad at one pixel per
+        // texel): x0[f] = (x0[0] + f) mod w_s. RGBA texels are stored as the four
+        // codes the fragment takes, so the run is copied a row segment at a time.
+        std::uint32_t off_row = 0;
+        for (int f = 0; f < m; ++f)
+          off_row |= static_cast<std::uint32_t>(y0[f] ^ y0[0]) |
+                     static_cast<std::uint32_t>(x0[f] ^ ((x0[0] + f) & (L.ws - 1)));
+        if (off_row == 0) {
+          const std::uint16_t* row = texel(0, y0[0]);
+          for (int f = 0, i = x0[0]; f < m; i = 0) {
+            const int len = std::min(m - f, L.ws - i);
+            std::memcpy(o + 4 * static_cast<std::size_t>(f), row + 4 * static_cast<std::size_t>(i),
+                        4 * sizeof(std::uint16_t) * static_cast<std::size_t>(len));
+            f += len;
+          }
+          continue;
+        }
+      }
       for (int f = 0; f < m; ++f, o += 4) {
         const std::uint16_t* q = texel(x0[f], y0[f]);
         for (int c = 0; c < nc; ++c) k[c] = q[c];

@@ -85,9 +85,15 @@ void compare_sampling(unsigned seed, int iterations, bool repeat_linear = false)
     // Texel-aligned spans: every coordinate a texel centre, so every LINEAR weight
     // is 0 (the one-texel shortcut of span_linear_repeat).
     const bool aligned = g() % 5 == 0;
+    // In order: consecutive texel centres along s (one pixel per texel, wrapping
+    // around the row: the row-copy shortcut of span_linear_repeat).
+    const bool in_order = aligned && g() % 2;
     const int ws = level_width(tex.levels[0]), hs = level_height(tex.levels[0], 2);
+    const int start = static_cast<int>(g() % (4 * ws)) - ws;
     for (int f = 0; f < n; ++f) {
-      s[static_cast<std::size_t>(f)] = aligned ? (static_cast<int>(g() % (4 * ws)) - ws + 0.5) / ws : random_coord(g, ws);
+      s[static_cast<std::size_t>(f)] = in_order  ? (start + f + 0.5) / ws
+                                       : aligned ? (static_cast<int>(g() % (4 * ws)) - ws + 0.5) / ws
+                                                 : random_coord(g, ws);
       t[static_cast<std::size_t>(f)] = row && f > 0 ? t[0]
                                        : aligned ? (static_cast<int>(g() % (4 * hs)) - hs + 0.5) / hs
                                                  : random_coord(g, hs);
