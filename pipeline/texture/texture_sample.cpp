@@ -537,19 +537,25 @@ void span_linear_repeat(const SpanLevel& L, const double* s, const double* t, in
       }
     }
   };
+  bool y_filled = !t_const;
+  auto fill_y = [&] {
+    if (y_filled) return;
+    std::fill_n(y0 + 1, kAxisChunk - 1, y0[0]);
+    std::fill_n(y1 + 1, kAxisChunk - 1, y1[0]);
+    std::fill_n(wy + 1, kAxisChunk - 1, wy[0]);
+    y_filled = true;
+  };
   for (int first = 0; first < n; first += kAxisChunk) {
     const int m = std::min(kAxisChunk, n - first);
     repeat_axis(s + first, m, L.ws, two_b, x0, x1, wx);
-    if (t_const) {
-      if (first == 0) repeat_axis(t, 1, L.hs, two_b, y0, y1, wy);
-      std::fill_n(y0 + 1, m - 1, y0[0]);
-      std::fill_n(y1 + 1, m - 1, y1[0]);
-      std::fill_n(wy + 1, m - 1, wy[0]);
-    } else {
-      repeat_axis(t + first, m, L.hs, two_b, y0, y1, wy);
-    }
-    std::uint32_t any = 0;
-    for (int f = 0; f < m; ++f) any |= wx[f] | wy[f];
+    // One t: its axis once, in lane 0; the other lanes are filled only where a
+    // loop below reads them per fragment (once per call: they never change).
+    if (!t_const) repeat_axis(t + first, m, L.hs, two_b, y0, y1, wy);
+    else if (first == 0) repeat_axis(t, 1, L.hs, two_b, y0, y1, wy);
+    std::uint32_t any = t_const ? wy[0] : 0;
+    for (int f = 0; f < m; ++f) any |= wx[f];
+    if (!t_const)
+      for (int f = 0; f < m; ++f) any |= wy[f];
     std::uint16_t* o = out + 4 * static_cast<std::size_t>(first);
     std::uint32_t k[4] = {0, 0, 0, 0};
     if (any == 0) {  // every weight (1, 0, 0, 0): the texel at (i0, j0)
@@ -558,9 +564,9 @@ void span_linear_repeat(const SpanLevel& L, const double* s, const double* t, in
         // texel): x0[f] = (x0[0] + f) mod w_s. RGBA texels are stored as the four
         // codes the fragment takes, so the run is copied a row segment at a time.
         std::uint32_t off_row = 0;
-        for (int f = 0; f < m; ++f)
-          off_row |= static_cast<std::uint32_t>(y0[f] ^ y0[0]) |
-                     static_cast<std::uint32_t>(x0[f] ^ ((x0[0] + f) & (L.ws - 1)));
+        for (int f = 0; f < m; ++f) off_row |= static_cast<std::uint32_t>(x0[f] ^ ((x0[0] + f) & (L.ws - 1)));
+        if (!t_const)
+          for (int f = 0; f < m; ++f) off_row |= static_cast<std::uint32_t>(y0[f] ^ y0[0]);
         if (off_row == 0) {
           const std::uint16_t* row = texel(0, y0[0]);
           for (int f = 0, i = x0[0]; f < m; i = 0) {
@@ -572,6 +578,7 @@ void span_linear_repeat(const SpanLevel& L, const double* s, const double* t, in
           continue;
         }
       }
+      fill_y();
       for (int f = 0; f < m; ++f, o += 4) {
         const std::uint16_t* q = texel(x0[f], y0[f]);
         for (int c = 0; c < nc; ++c) k[c] = q[c];
@@ -579,6 +586,7 @@ void span_linear_repeat(const SpanLevel& L, const double* s, const double* t, in
       }
       continue;
     }
+    fill_y();
 #ifdef __SSE4_1__
     if constexpr (NC == 4 || NC == 3) {  // the components in one 128-bit register, the same integers
       const __m128i vhalf = _mm_set1_epi32(static_cast<int>(half));
