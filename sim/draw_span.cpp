@@ -64,30 +64,45 @@ void interpolate_colors(const std::array<const WindowVertex*, 3>& tv, bool secon
 //    orthographic screen quad) and A < 2^53, v_2 = (Σ w_k)/A = A/A = 1 exactly
 //    (the integer weights and their partial sums are exact in binary64), and
 //    x / 1 = x: v_2 and the two divisions by it are skipped with the same result.
+//  - When A is a power of two 2^k (k <= 52; the triangles of a screen-aligned
+//    square, e.g.), x / A and x · 2^−k are the same correctly rounded value of
+//    the same real number (2^−k is exact), subnormal, zero, infinite and NaN
+//    results included: the divisions by A become multiplications.
 using Coords = std::array<double, 3>;  // s/w, t/w, q/w at a vertex
 
+// x / A: a division, or (kPow2) the multiplication by 1/A = 2^−k, the same value.
+template <bool kPow2>
+struct ByArea {
+  double a, inv;
+  double operator()(double x) const {
+    if constexpr (kPow2) return x * inv;
+    else return x / a;
+  }
+};
+
 // s/q and t/q at one fragment of weights (w0, w1, w2) (binary64, the reference's order).
-template <bool kUnitQ>
-inline void coordinates_at(const Coords& c0, const Coords& c1, const Coords& c2, double a, double w0, double w1,
+template <bool kUnitQ, class Div>
+inline void coordinates_at(const Coords& c0, const Coords& c1, const Coords& c2, Div by_a, double w0, double w1,
                            double w2, double& s, double& t) {
-  const double v0 = (((0.0 + w0 * c0[0]) + w1 * c1[0]) + w2 * c2[0]) / a;
-  const double v1 = (((0.0 + w0 * c0[1]) + w1 * c1[1]) + w2 * c2[1]) / a;
+  const double v0 = by_a(((0.0 + w0 * c0[0]) + w1 * c1[0]) + w2 * c2[0]);
+  const double v1 = by_a(((0.0 + w0 * c0[1]) + w1 * c1[1]) + w2 * c2[1]);
   if constexpr (kUnitQ) {
     s = v0;
     t = v1;
   } else {
-    const double q = (((0.0 + w0 * c0[2]) + w1 * c1[2]) + w2 * c2[2]) / a;
+    const double q = by_a(((0.0 + w0 * c0[2]) + w1 * c1[2]) + w2 * c2[2]);
     s = v0 / q;
     t = v1 / q;
   }
 }
 
-template <bool kUnitQ>
-void coordinates_stepped(const Coords& c0, const Coords& c1, const Coords& c2, double a, const Coords& first,
+template <bool kUnitQ, class Div>
+void coordinates_stepped(const Coords& c0, const Coords& c1, const Coords& c2, Div by_a, const Coords& first,
                          const Coords& d, int n, double* s, double* t) {
   for (int i = 0; i < n; ++i) {
     const double fi = static_cast<double>(i);
-    coordinates_at<kUnitQ>(c0, c1, c2, a, first[0] + fi * d[0], first[1] + fi * d[1], first[2] + fi * d[2], s[i], t[i]);
+    coordinates_at<kUnitQ>(c0, c1, c2, by_a, first[0] + fi * d[0], first[1] + fi * d[1], first[2] + fi * d[2], s[i],
+                           t[i]);
   }
 }
 
@@ -99,6 +114,7 @@ void texture_coordinates(const std::array<const WindowVertex*, 3>& tv, int u, co
   const auto& c2 = tv[2]->tcw[u];
   const bool exact = cov.area < (std::int64_t{1} << 53);
   const bool unit_q = c0[2] == 1.0 && c1[2] == 1.0 && c2[2] == 1.0 && exact;
+  const bool pow2 = exact && (cov.area & (cov.area - 1)) == 0;  // A = 2^k, k <= 52 (area > 0)
   const Coords d{static_cast<double>(cov.dwdx[0]), static_cast<double>(cov.dwdx[1]), static_cast<double>(cov.dwdx[2])};
   for (int r = 0, off = 0; r < runs.runs; off += runs.length[r], ++r) {
     const std::array<std::int64_t, 3>& w = runs.first[r];
@@ -111,14 +127,16 @@ void texture_coordinates(const std::array<const WindowVertex*, 3>& tv, int u, co
       // hold 3 slots more than the fragments.
       const int n4 = (n + 3) & ~3;
       const Coords f{static_cast<double>(w[0]), static_cast<double>(w[1]), static_cast<double>(w[2])};
-      if (unit_q) coordinates_stepped<true>(c0, c1, c2, a, f, d, n4, s + off, t + off);
-      else coordinates_stepped<false>(c0, c1, c2, a, f, d, n4, s + off, t + off);
+      if (pow2 && unit_q) coordinates_stepped<true>(c0, c1, c2, ByArea<true>{a, 1 / a}, f, d, n4, s + off, t + off);
+      else if (pow2) coordinates_stepped<false>(c0, c1, c2, ByArea<true>{a, 1 / a}, f, d, n4, s + off, t + off);
+      else if (unit_q) coordinates_stepped<true>(c0, c1, c2, ByArea<false>{a, 0}, f, d, n4, s + off, t + off);
+      else coordinates_stepped<false>(c0, c1, c2, ByArea<false>{a, 0}, f, d, n4, s + off, t + off);
       continue;
     }
     for (int i = 0; i < n; ++i) {  // the reference's conversions of the int64 weights
       double wd[3];
       for (int k = 0; k < 3; ++k) wd[k] = static_cast<double>(w[k] + i * cov.dwdx[k]);
-      coordinates_at<false>(c0, c1, c2, a, wd[0], wd[1], wd[2], s[off + i], t[off + i]);
+      coordinates_at<false>(c0, c1, c2, ByArea<false>{a, 0}, wd[0], wd[1], wd[2], s[off + i], t[off + i]);
     }
   }
 }

@@ -203,3 +203,46 @@ TEST_CASE("fast draw: vertices shared by a glEnd's polygons (window form once), 
       CHECK(shared > 0);
     }
 }
+
+TEST_CASE("fast draw: triangles of power-of-two area (divisions by A as multiplications), span == per-fragment") {
+  // Right triangles with legs of 2^a and 2^b pixels at integer corners: twice the
+  // area in grid units is 2^(a + b + 2S), the case where the span path multiplies
+  // by 1/A instead of dividing. Affine (q = 1) and projective texture coordinates.
+  std::uint64_t fast_runs = 0;
+  for (const char* profile : {"geforce256", "rgba12"}) {
+    for (std::uint32_t seed = 300; seed < 300 + kCases; ++seed) {
+      Pair p(profile, 64, 64);
+      SceneRng r(seed);
+      for (Context* c : {&p.fast, &p.slow}) {
+        SceneRng rc(seed);
+        for (int u = 0; u < 2; ++u) random_texture(*c, rc, u, static_cast<std::uint32_t>(1 + u));
+        c->matrixMode(gl::PROJECTION);
+        c->loadIdentity();
+        c->ortho(0, 64, 0, 64, -1, 1);
+        c->matrixMode(gl::MODELVIEW);
+        c->loadIdentity();
+        c->enable(gl::BLEND);
+        c->blendFunc(gl::ONE, gl::ONE);
+        c->begin(gl::TRIANGLES);
+        SceneRng rv(seed + 7);
+        for (int k = 0; k < 6; ++k) {
+          const int x = rv.i(0, 40), y = rv.i(0, 40), a = 1 << rv.i(0, 4), b = 1 << rv.i(0, 4);
+          const bool flip = rv.b(50), projective = rv.b(40);
+          const int px[3] = {x, x + a, x}, py[3] = {y, y, y + b};
+          for (int v = 0; v < 3; ++v) {
+            const int i = flip ? 2 - v : v;
+            for (GLenum u = 0; u < 2; ++u)
+              c->multiTexCoord4(gl::TEXTURE0 + u, rv.d(-2, 2), rv.d(-2, 2), 0, projective ? rv.d(0.5, 2) : 1.0);
+            c->color4(rv.d(0, 1), rv.d(0, 1), rv.d(0, 1), rv.d(0, 1));
+            c->vertex3(px[i], py[i], rv.d(-0.9, 0.9));
+          }
+        }
+        c->end();
+      }
+      INFO("profile ", std::string(profile), " seed ", seed);
+      REQUIRE(buffer_hashes(p.fast) == buffer_hashes(p.slow));
+      fast_runs += p.fast.fast_runs();  // (textures whose result depends on λ take the reference path)
+    }
+  }
+  CHECK(fast_runs > 500);
+}
