@@ -161,6 +161,35 @@ void Context::shade_runs_fast(const ShadingState& st, const ShadingPlan& plan,
   if (fb_.has_depth())
     interpolate_code_runs(runs.first, runs.length, runs.runs, cov.dwdx, cov.area, tv[0]->depth, tv[1]->depth,
                           tv[2]->depth, depth);
+  // One unit whose REPLACE of an RGBA texture at the colour width is the whole
+  // result (no other unit, no colour sum, no combiners): its texels are the
+  // fragments' colours (texture_environment's REPLACE: Ct, At), sampled straight
+  // into `out`; the primary colour is not needed.
+  int replace_unit = -1;
+  if (shade && !combiners_.enabled && !plan.color_sum) {
+    int units = 0;
+    for (int u = 0; u < kShadeUnits; ++u)
+      if (plan.sample[u] || plan.env[u]) {
+        ++units;
+        replace_unit = u;
+      }
+    if (units != 1 || !plan.sample[replace_unit] || !plan.env[replace_unit] ||
+        st.units[replace_unit].env.mode != gl::REPLACE)
+      replace_unit = -1;
+    if (replace_unit >= 0) {
+      const TextureObject& tex = *st.units[replace_unit].texture;
+      const TextureImage& level = tex.levels[static_cast<std::size_t>(tex.params.base_level)];
+      if (level.base != BaseFormat::RGBA || level.bits != st.color.bits) replace_unit = -1;
+    }
+  }
+  if (replace_unit >= 0) {
+    sc.s.resize(N + 3);  // (texture_coordinates writes up to 3 slots past the last run)
+    sc.t.resize(N + 3);
+    texture_coordinates(tv, replace_unit, cov, runs, sc.s.data(), sc.t.data());
+    sample_span_fixed(*st.units[replace_unit].texture, st.units[replace_unit].dims, sc.s.data(), sc.t.data(), n,
+                      st.sample, out);
+    return;
+  }
   interpolate_colors(tv, false, cov, runs, flat, sc.lane, out);  // the primary colour, shaded in place
   if (!shade) return;
 

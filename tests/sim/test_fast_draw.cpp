@@ -246,3 +246,38 @@ TEST_CASE("fast draw: triangles of power-of-two area (divisions by A as multipli
   }
   CHECK(fast_runs > 500);
 }
+
+TEST_CASE("fast draw: one REPLACE unit (texels straight to the fragment colours), every base format, span == per-fragment") {
+  // The span path samples a lone REPLACE unit of an RGBA texture at the colour
+  // width straight into the fragment colours; every other base format (RGB keeps
+  // the primary alpha, ALPHA the primary colour...) or width takes the texture
+  // environment. Scenes of one REPLACE unit, the colour sum on or off.
+  std::uint64_t fast_runs = 0;
+  for (const char* profile : {"geforce256", "rgba12"}) {
+    for (std::uint32_t seed = 600; seed < 600 + 2 * kCases; ++seed) {
+      Pair p(profile);
+      for (Context* c : {&p.fast, &p.slow}) {
+        SceneRng r(seed);
+        random_clear_and_projection(*c, r, 0);
+        random_texture(*c, r, 0, 1);
+        c->texEnvi(gl::TEXTURE_ENV, gl::TEXTURE_ENV_MODE, gl::REPLACE);
+        c->activeTexture(gl::TEXTURE1);
+        c->disable(gl::TEXTURE_2D);
+        c->activeTexture(gl::TEXTURE0);
+        c->disable(gl::REGISTER_COMBINERS_NV);
+        if (r.b(20)) c->enable(gl::COLOR_SUM);
+        else c->disable(gl::COLOR_SUM);
+        c->shadeModel(r.b(80) ? gl::SMOOTH : gl::FLAT);
+        random_fragment_ops(*c, r);
+        const bool aligned = r.b(40);
+        c->begin(gl::TRIANGLES);
+        for (int k = 0; k < 18; ++k) random_vertex(*c, r, aligned);
+        c->end();
+      }
+      INFO("profile ", std::string(profile), " seed ", seed);
+      REQUIRE(buffer_hashes(p.fast) == buffer_hashes(p.slow));
+      fast_runs += p.fast.fast_runs();
+    }
+  }
+  CHECK(fast_runs > 500);
+}
