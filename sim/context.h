@@ -629,6 +629,15 @@ class Context {
   // place (clip_polygon hands the same buffer back when nothing is clipped).
   std::vector<ClipVertex> polygon_scratch_;
   std::vector<WindowVertex> window_scratch_;
+  // window_vertex's last primary and secondary colour conversions (a run of
+  // vertices of one colour converts it once).
+  struct ColorMemo {
+    bool valid = false;
+    ColorFormat format;
+    std::array<double, 4> in{};
+    Rgba out;
+  };
+  mutable std::array<ColorMemo, 2> color_memo_;
   // Threads: the pool (rebuilt when threads() changes) and per-band scratch.
   // A batch whose triangles' bounding boxes (clipped to the window) sum to at
   // least kSplitFragments pixels is split into bands of rows.

@@ -12,6 +12,7 @@
 //     s = Σ w_k·s_k/w_clip_k / Σ w_k·q_k/w_clip_k  (then s/q is what is sampled).
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <utility>
 
 #include "pipeline/combiners/register_combiners.h"
@@ -250,7 +251,17 @@ void Context::window_vertex(const ClipVertex& c, const DrawSetup& ds, WindowVert
   const double zw = depth_near_ + (depth_far_ - depth_near_) * ((c.position.z * iw + 1) / 2);
   if (ds.has_depth) w.depth = unorm_from_double(zw, fb_.format().depth_bits);
   // Vertex colours into the fragment colour format (§1.2 codes, or binary32/64).
-  const Rgba pc = rgba_from_values(c.color, ds.st->color), sc = rgba_from_values(c.secondary, ds.st->color);
+  // A colour equal bit for bit to the previous vertex's (in the same format)
+  // converts to the same codes: with the fast paths, the last conversion of each
+  // is kept (without, every vertex converts: the reference the tests compare with).
+  auto convert = [&](const std::array<double, 4>& v, ColorMemo& m) {
+    const ColorFormat& f = ds.st->color;
+    if (!fast_paths_ || !m.valid || m.format.arith != f.arith || m.format.bits != f.bits ||
+        std::memcmp(m.in.data(), v.data(), sizeof(double) * 4) != 0)
+      m = {true, f, v, rgba_from_values(v, f)};
+    return m.out;
+  };
+  const Rgba pc = convert(c.color, color_memo_[0]), sc = convert(c.secondary, color_memo_[1]);
   w.color_code = pc.code;
   w.secondary_code = sc.code;
   w.color = pc.value;

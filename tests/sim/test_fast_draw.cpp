@@ -281,3 +281,34 @@ TEST_CASE("fast draw: one REPLACE unit (texels straight to the fragment colours)
   }
   CHECK(fast_runs > 500);
 }
+
+TEST_CASE("fast draw: vertex colours converted once per run of equal colours, span == per-fragment") {
+  // The fast path keeps the last vertex colour conversion; colours here repeat,
+  // or differ from the previous vertex's in one channel only (primary or
+  // secondary), so a memo that compared too little would show.
+  for (const char* profile : {"geforce256", "rgba10"}) {
+    for (std::uint32_t seed = 900; seed < 900 + kCases; ++seed) {
+      Pair p(profile);
+      for (Context* c : {&p.fast, &p.slow}) {
+        SceneRng r(seed);
+        random_clear_and_projection(*c, r, 0);
+        c->disable(gl::TEXTURE_2D);
+        c->enable(gl::COLOR_SUM);
+        c->shadeModel(gl::SMOOTH);
+        double col[4] = {0.25, 0.5, 0.75, 1.0}, sec[3] = {0.1, 0.2, 0.3};
+        c->begin(gl::TRIANGLE_STRIP);
+        for (int k = 0; k < 24; ++k) {
+          if (r.b(50)) col[r.i(0, 3)] = r.d(0, 1);  // one channel changes, or none
+          if (r.b(30)) sec[r.i(0, 2)] = r.d(0, 1);
+          c->color4(col[0], col[1], col[2], col[3]);
+          c->secondaryColor3(sec[0], sec[1], sec[2]);
+          const double W = c->framebuffer().width(), H = c->framebuffer().height();
+          c->vertex3(r.d(0, W), r.d(0, H), r.d(-0.9, 0.9));
+        }
+        c->end();
+      }
+      INFO("profile ", std::string(profile), " seed ", seed);
+      REQUIRE(buffer_hashes(p.fast) == buffer_hashes(p.slow));
+    }
+  }
+}
