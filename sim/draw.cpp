@@ -343,14 +343,20 @@ void Context::raster_triangle(const DrawSetup& ds, const std::array<const Window
         listed = y >= rect.y0 && y < rect.y1 && x0 >= rect.x0 && x0 + runs.length[r] <= rect.x1;
       }
       if (listed) {
-        sc.pixel.resize(static_cast<std::size_t>(runs.count));
+        // Each run's pixel indices eight at a time (a run of a small triangle is a
+        // few pixels): the last block may write past the run into the next run's
+        // slots, which that run then overwrites; the list holds 7 slots more.
+        sc.pixel.resize(static_cast<std::size_t>(runs.count) + 7);
         const auto W = static_cast<std::uint32_t>(fb_.width());
+        std::uint32_t* px = sc.pixel.data();
         for (int r = 0, off = 0; r < runs.runs; off += runs.length[r], ++r) {
           const auto first = static_cast<std::uint32_t>(sc.run_y[static_cast<std::size_t>(r)] + vy) * W +
                              static_cast<std::uint32_t>(sc.run_x0[static_cast<std::size_t>(r)] + vx);
-          for (int i = 0; i < runs.length[r]; ++i) sc.pixel[static_cast<std::size_t>(off + i)] = first + static_cast<std::uint32_t>(i);
-          count_fast_run();
+          for (int i = 0; i < runs.length[r]; i += 8)
+            for (int j = 0; j < 8; ++j) px[off + i + j] = first + static_cast<std::uint32_t>(i + j);
         }
+        if (band < 0) fast_runs_ += static_cast<std::uint64_t>(runs.runs);
+        else band_fast_runs_[static_cast<std::size_t>(band)] += static_cast<std::uint64_t>(runs.runs);
         count_fragments(runs.count);
         run_fragment_plan_pixels(*fragment_current_plan_, fragment_current_constants_, sc.codes.data(),
                                  has_depth ? sc.depth.data() : nullptr, sc.pixel.data(), runs.count, ds.buffers);
