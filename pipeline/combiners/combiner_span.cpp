@@ -10,6 +10,7 @@
 
 #include "pipeline/combiners/final_combiner.h"
 #include "pipeline/combiners/register_combiners.h"
+#include "pipeline/number/rgba_lanes.h"
 #include "pipeline/number/snorm.h"
 #include "pipeline/number/unorm.h"
 
@@ -75,16 +76,7 @@ struct Kernel {
       std::int32_t(&r)[4][kChunk] = reg[reg_index];
       const std::uint16_t* s = src + 4 * first;
       int i = 0;
-      for (; i + 4 <= n; i += 4) {
-        const __m128i x01 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(s + 4 * i));
-        const __m128i x23 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(s + 4 * i + 8));
-        const __m128i t0 = _mm_unpacklo_epi16(x01, x23), t1 = _mm_unpackhi_epi16(x01, x23);
-        const __m128i rg = _mm_unpacklo_epi16(t0, t1), ba = _mm_unpackhi_epi16(t0, t1);  // r0..r3 g0..g3, b.. a..
-        _mm_storeu_si128(reinterpret_cast<__m128i*>(r[0] + i), _mm_cvtepu16_epi32(rg));
-        _mm_storeu_si128(reinterpret_cast<__m128i*>(r[1] + i), _mm_cvtepu16_epi32(_mm_srli_si128(rg, 8)));
-        _mm_storeu_si128(reinterpret_cast<__m128i*>(r[2] + i), _mm_cvtepu16_epi32(ba));
-        _mm_storeu_si128(reinterpret_cast<__m128i*>(r[3] + i), _mm_cvtepu16_epi32(_mm_srli_si128(ba, 8)));
-      }
+      for (; i + 4 <= n; i += 4) rgba16_to_lanes(s + 4 * i, r[0] + i, r[1] + i, r[2] + i, r[3] + i);
       for (; i < n; ++i)
         for (int c = 0; c < 4; ++c) r[c][i] = s[4 * i + c];
       for (int c = 0; c < 4; ++c) std::fill(r[c] + n, r[c] + lanes8(n), 0);  // the scratch lanes (see run)

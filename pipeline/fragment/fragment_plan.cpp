@@ -12,6 +12,7 @@
 
 #include "pipeline/fragment/test_func.h"
 #include "pipeline/fragment/write_mask.h"
+#include "pipeline/number/rgba_lanes.h"
 #include "pipeline/number/unorm.h"
 
 namespace ffsim {
@@ -449,15 +450,9 @@ void color_stage_fixed(const FragmentPlan& plan, const FragmentConstants& k, con
   kern.M = k.color_max;
   int j1 = 0;
 #ifdef __SSE4_1__
-  // Four pixels' codes (two registers of interleaved R, G, B, A) transposed to
-  // the four channel arrays, zero-extended to 32 bits.
+  // Four pixels' codes at a time transposed to the four channel arrays.
   auto split4 = [](__m128i x01, __m128i x23, std::uint32_t (&to)[4][kChunk], int j) {
-    const __m128i t0 = _mm_unpacklo_epi16(x01, x23), t1 = _mm_unpackhi_epi16(x01, x23);  // r0 r2 g0 g2 .., r1 r3 ..
-    const __m128i rg = _mm_unpacklo_epi16(t0, t1), ba = _mm_unpackhi_epi16(t0, t1);      // r0..r3 g0..g3, b0..b3 a0..a3
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(to[0] + j), _mm_cvtepu16_epi32(rg));
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(to[1] + j), _mm_cvtepu16_epi32(_mm_srli_si128(rg, 8)));
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(to[2] + j), _mm_cvtepu16_epi32(ba));
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(to[3] + j), _mm_cvtepu16_epi32(_mm_srli_si128(ba, 8)));
+    rgba16_to_lanes(x01, x23, to[0] + j, to[1] + j, to[2] + j, to[3] + j);
   };
   for (; j1 + 4 <= n; j1 += 4)
     split4(_mm_loadu_si128(reinterpret_cast<const __m128i*>(in + 4 * j1)),
