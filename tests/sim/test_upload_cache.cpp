@@ -89,7 +89,7 @@ void random_sequence(const std::string& profile_name, std::uint32_t seed, int st
         break;
       }
       case 2: {  // a post-colour-matrix table, enabled or not
-        std::vector<float> t(4 * 8);
+        std::vector<float> t(4 * 12);  // 8 entries, plus slack for the unpack modes (they apply here too)
         for (float& x : t) x = static_cast<float>(unit());
         const bool on = pick(2) == 0;
         p.both([&](Context& c) {
