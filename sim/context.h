@@ -30,6 +30,7 @@
 #include "pipeline/pixel_transfer/pixel_image.h"
 #include "pipeline/pixel_transfer/pixel_state.h"
 #include "pipeline/pixel_transfer/transfer_plan.h"
+#include "pipeline/raster/triangle.h"
 #include "pipeline/texenv/shading.h"
 #include "pipeline/texture/texture_object.h"
 #include "sim/framebuffer.h"
@@ -80,15 +81,21 @@ inline constexpr int kMaxTextureUnits = 4;
 
 struct WindowVertex;       // sim/draw_span.h
 class WorkerPool;          // sim/worker_pool.h
-struct TriangleCoverage;   // pipeline/raster/triangle.h
-struct CoverageRun;
-// Runs of one triangle for the span path: `count` fragments in `runs` runs of
-// length[0], length[1], ...; run r's weights are first[r] + i·dwdx at its i-th
-// fragment (TriangleCoverage).
+// Runs for the span path: `count` fragments in `runs` runs of length[0],
+// length[1], ...; run r's weights are first[r] + i·dwdx at its i-th fragment
+// (the TriangleCoverage of the run's triangle).
 struct FastRuns {
   const std::array<std::int64_t, 3>* first = nullptr;  // per run: the weights at its first fragment
   const int* length = nullptr;                         // per run: its fragments
   int runs = 0, count = 0;                             // runs; fragments of all runs
+};
+// A triangle of a span-path group (sim/draw.cpp): its window vertices and
+// coverage, and where its runs start in the group: runs [run_begin, the next
+// triangle's run_begin), fragments from fragment_begin on.
+struct GroupTriangle {
+  std::array<const WindowVertex*, 3> tv{};
+  TriangleCoverage cov;
+  int run_begin = 0, fragment_begin = 0;
 };
 
 class Context {
@@ -429,6 +436,13 @@ class Context {
   // glEnds whose vertices were put in window form once and shared by their
   // polygons (span path, smooth shading, every vertex inside the view volume).
   std::uint64_t shared_vertex_draws() const { return shared_vertex_draws_; }
+  // Span-path groups (sim/draw.cpp): triangles whose runs joined a group already
+  // holding an earlier triangle's, and groups closed because a run met one of
+  // their pixels.
+  struct SpanGroupStats {
+    std::uint64_t joined = 0, met = 0;
+  };
+  SpanGroupStats span_group_stats() const;
 
  private:
   bool set_capability(GLenum cap, bool on, const char* function);
@@ -614,14 +628,23 @@ class Context {
     std::array<std::vector<std::uint16_t>, kMaxTextureUnits> texels;
     std::vector<double> s, t;
     std::vector<std::uint32_t> lane;
-    // One triangle's runs (sim/draw.cpp): first weights, rows, first pixels,
-    // lengths (one per run), and the shaded codes and depths, all runs one after
-    // the other.
+    // A group of runs (sim/draw.cpp), from one triangle or several: first
+    // weights, rows, first pixels, lengths (one per run), and the shaded codes and
+    // depths, all runs one after the other; the triangles they come from.
     std::vector<std::array<std::int64_t, 3>> weight;
     std::vector<int> run_y, run_x0, run_length;
     std::vector<std::uint16_t> codes;
     std::vector<std::uint32_t> depth;
     std::vector<std::uint32_t> pixel;  // the group's fragments' pixel indices (y·width + x)
+    std::vector<GroupTriangle> triangles;
+    int group_fragments = 0;
+    unsigned coords_reuse = 0;  // coords_reuse_mask of every triangle of the group
+    // The group's pixels, one bit each, `taken_words` 64-bit words per window row
+    // (empty: groups end with their triangle); `marked`: the group's bits are set.
+    std::vector<std::uint64_t> taken;
+    std::size_t taken_words = 0;
+    bool marked = false;
+    std::uint64_t joined = 0, met = 0;  // span_group_stats
   };
   SpanScratch span_scratch_;
   // glEnd's polygons (clip coordinates, then window vertices) in buffers reused
@@ -665,9 +688,19 @@ class Context {
   // of runs of one triangle: colour codes into out (4 per fragment, the runs one
   // after the other), depth codes into depth (when the framebuffer has depth).
   bool span_path_supported(const ShadingState& st, const ShadingPlan& plan, bool shade) const;
-  void shade_runs_fast(const ShadingState& st, const ShadingPlan& plan, const std::array<const WindowVertex*, 3>& tv,
-                       const TriangleCoverage& cov, const FastRuns& runs, bool flat, bool shade, std::uint16_t* out,
-                       std::uint32_t* depth, SpanScratch& scratch);
+  // The runs may come from several triangles (`tris`, in run order), whose
+  // coords_reuse_mask must be the same.
+  void shade_runs_fast(const ShadingState& st, const ShadingPlan& plan, const GroupTriangle* tris, int triangles,
+                       const FastRuns& runs, bool flat, bool shade, std::uint16_t* out, std::uint32_t* depth,
+                       SpanScratch& scratch);
+  // The span path's group of runs (sim/draw.cpp): shaded and written, then
+  // emptied; every caller of raster_triangle calls it once its triangles are
+  // done (a group may hold runs of earlier triangles of the same glEnd).
+  SpanScratch& scratch_of(int band) { return band < 0 ? span_scratch_ : band_scratch_[static_cast<std::size_t>(band)]; }
+  void shade_group(const DrawSetup& ds, FragmentSpan& span, int band);
+  void clear_group(SpanScratch& sc);
+  void write_span(const DrawSetup& ds, FragmentSpan& span, int band);
+  void count_written(int band, std::uint64_t fragments, std::uint64_t fast_runs);
 
 };
 

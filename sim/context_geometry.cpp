@@ -146,6 +146,7 @@ void Context::end() {
       break;
     default: break;
   }
+  if (shared && !ds.bands) shade_group(ds, shared_span, -1);  // the span path's last group of the glEnd
   // Shared vertices: the batch is flushed when full only here, after the glEnd's
   // triangles (they index this glEnd's vertices, which a flush would clear).
   if (shared && ds.bands && batch_triangles_.size() >= kBatchTriangles) flush_batch(ds);

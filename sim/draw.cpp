@@ -207,6 +207,10 @@ Context::DrawSetup Context::draw_setup(const ShadingState& st, const ShadingPlan
   // with one thread. Shared state is made ready here (fragment plan, combiner
   // plan), then only read; the probe forces one thread (it records in order).
   ds.bands = threads_ > 1 && !probe_.enabled();
+  // No span-path group is open between glEnds (each ends with shade_group, or
+  // its guard on an exception); emptied again in case one was left.
+  clear_group(span_scratch_);
+  for (SpanScratch& b : band_scratch_) clear_group(b);
   // Without the probe, spans go straight to run_fragment_plan with the plan and
   // buffers looked up once here (no state changes inside glBegin/glEnd).
   ds.direct_writes = !probe_.enabled();
@@ -270,6 +274,139 @@ void Context::window_vertex(const ClipVertex& c, const DrawSetup& ds, WindowVert
     w.tcw[u] = {c.texcoord[u].x * iw, c.texcoord[u].y * iw, c.texcoord[u].w * iw};
 }
 
+void Context::count_written(int band, std::uint64_t fragments, std::uint64_t fast_runs) {
+  if (band < 0) {
+    fragments_written_ += fragments;
+    fast_runs_ += fast_runs;
+  } else {  // this band's share, summed by flush_batch
+    band_fragments_[static_cast<std::size_t>(band)] += fragments;
+    band_fast_runs_[static_cast<std::size_t>(band)] += fast_runs;
+  }
+}
+
+void Context::write_span(const DrawSetup& ds, FragmentSpan& span, int band) {
+  if (band < 0 && !ds.direct_writes) {
+    write_fragments(span);
+  } else {  // write_fragments without the plan update and the probe (done, off), here or on a worker
+    count_written(band, static_cast<std::uint64_t>(span.count), 0);
+    run_fragment_plan(*fragment_current_plan_, fragment_current_constants_, span, ds.buffers, fb_.width());
+  }
+}
+
+namespace {
+
+// A run's framebuffer lines (colour, depth) are requested before it is shaded
+// and arrive meanwhile: the fragment operations waited on these loads.
+void prefetch_run(const FragmentBuffers& b, int width, int height, int y, int x0, int len) {
+  if (!b.codes || y < 0 || y >= height || x0 < 0 || x0 + len > width) return;
+  const std::size_t p0 = static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x0);
+  const std::size_t p1 = p0 + static_cast<std::size_t>(len) - 1;
+  for (std::size_t p = p0; p < p1 + 8; p += 8) __builtin_prefetch(b.codes + 4 * std::min(p, p1), 1);
+  if (b.depth)
+    for (std::size_t p = p0; p < p1 + 16; p += 16) __builtin_prefetch(b.depth + std::min(p, p1), 1);
+}
+
+// The bits of the pixels [x0, x0 + n) of a row (n < 64: two words at most): the
+// word index and the masks of that word and the next.
+struct RowBits {
+  std::size_t word;
+  std::uint64_t lo, hi;
+};
+RowBits row_bits(std::size_t row_word, int x0, int n) {
+  const int b = x0 & 63;
+  const std::uint64_t run = (std::uint64_t{1} << n) - 1;  // n <= 63
+  return {row_word + static_cast<std::size_t>(x0 >> 6), run << b, b + n > 64 ? run >> (64 - b) : 0};
+}
+
+}  // namespace
+
+Context::SpanGroupStats Context::span_group_stats() const {
+  SpanGroupStats g;
+  auto add = [&](const SpanScratch& sc) {
+    g.joined += sc.joined;
+    g.met += sc.met;
+  };
+  add(span_scratch_);
+  for (const SpanScratch& b : band_scratch_) add(b);
+  return g;
+}
+
+void Context::clear_group(SpanScratch& sc) {
+  if (sc.marked)  // the group's bits back to 0, run by run
+    for (std::size_t r = 0; r < sc.run_length.size(); ++r) {
+      const RowBits rb = row_bits(static_cast<std::size_t>(sc.run_y[r]) * sc.taken_words, sc.run_x0[r], sc.run_length[r]);
+      sc.taken[rb.word] &= ~rb.lo;
+      if (rb.hi) sc.taken[rb.word + 1] &= ~rb.hi;
+    }
+  sc.marked = false;
+  sc.group_fragments = 0;
+  sc.weight.clear();
+  sc.run_y.clear();
+  sc.run_x0.clear();
+  sc.run_length.clear();
+  sc.triangles.clear();
+}
+
+void Context::shade_group(const DrawSetup& ds, FragmentSpan& span, int band) {
+  SpanScratch& sc = scratch_of(band);
+  struct Emptied {  // however this ends (the fragment operations may throw)
+    Context& c;
+    SpanScratch& sc;
+    ~Emptied() { c.clear_group(sc); }
+  } emptied{*this, sc};
+  if (sc.run_length.empty()) return;
+  const FastRuns runs{sc.weight.data(), sc.run_length.data(), static_cast<int>(sc.run_length.size()), sc.group_fragments};
+  const bool has_depth = ds.has_depth;
+  sc.codes.resize(4 * static_cast<std::size_t>(runs.count));
+  if (has_depth) sc.depth.resize(static_cast<std::size_t>(runs.count));
+  for (int r = 0; r < runs.runs; ++r)
+    prefetch_run(ds.buffers, fb_.width(), fb_.height(), sc.run_y[static_cast<std::size_t>(r)],
+                 sc.run_x0[static_cast<std::size_t>(r)], runs.length[r]);
+  shade_runs_fast(*ds.st, *ds.plan, sc.triangles.data(), static_cast<int>(sc.triangles.size()), runs, ds.flat, ds.shade,
+                  sc.codes.data(), has_depth ? sc.depth.data() : nullptr, sc);
+  // The fragment operations for the whole group in one call when every run
+  // lies inside the write rectangle (window and scissor) and the colour is
+  // codes: the group's fragments are distinct pixels (a triangle's are; a run
+  // meeting a pixel of the group closes it first), so the buffers end the same
+  // as with the runs one by one in order.
+  const WriteRect& rect = fragment_current_constants_.rect;
+  bool listed = ds.buffers.codes != nullptr;
+  for (int r = 0; r < runs.runs && listed; ++r) {
+    const int y = sc.run_y[static_cast<std::size_t>(r)], x0 = sc.run_x0[static_cast<std::size_t>(r)];
+    listed = y >= rect.y0 && y < rect.y1 && x0 >= rect.x0 && x0 + runs.length[r] <= rect.x1;
+  }
+  if (listed) {
+    // Each run's pixel indices eight at a time (a run of a small triangle is a
+    // few pixels): the last block may write past the run into the next run's
+    // slots, which that run then overwrites; the list holds 7 slots more.
+    sc.pixel.resize(static_cast<std::size_t>(runs.count) + 7);
+    const auto W = static_cast<std::uint32_t>(fb_.width());
+    std::uint32_t* px = sc.pixel.data();
+    for (int r = 0, off = 0; r < runs.runs; off += runs.length[r], ++r) {
+      const auto first = static_cast<std::uint32_t>(sc.run_y[static_cast<std::size_t>(r)]) * W +
+                         static_cast<std::uint32_t>(sc.run_x0[static_cast<std::size_t>(r)]);
+      for (int i = 0; i < runs.length[r]; i += 8)
+        for (int j = 0; j < 8; ++j) px[off + i + j] = first + static_cast<std::uint32_t>(i + j);
+    }
+    count_written(band, static_cast<std::uint64_t>(runs.count), static_cast<std::uint64_t>(runs.runs));
+    run_fragment_plan_pixels(*fragment_current_plan_, fragment_current_constants_, sc.codes.data(),
+                             has_depth ? sc.depth.data() : nullptr, sc.pixel.data(), runs.count, ds.buffers);
+    return;
+  }
+  for (int r = 0, off = 0; r < runs.runs; off += runs.length[r], ++r) {
+    const auto o = static_cast<std::size_t>(off), len = static_cast<std::size_t>(runs.length[r]);
+    span.y = sc.run_y[static_cast<std::size_t>(r)];
+    span.x0 = sc.run_x0[static_cast<std::size_t>(r)];
+    span.count = runs.length[r];
+    span.codes.assign(sc.codes.begin() + static_cast<std::ptrdiff_t>(4 * o),
+                      sc.codes.begin() + static_cast<std::ptrdiff_t>(4 * (o + len)));
+    if (has_depth)
+      span.depth.assign(sc.depth.begin() + static_cast<std::ptrdiff_t>(o), sc.depth.begin() + static_cast<std::ptrdiff_t>(o + len));
+    count_written(band, 0, 1);
+    write_span(ds, span, band);
+  }
+}
+
 void Context::raster_triangle(const DrawSetup& ds, const std::array<const WindowVertex*, 3>& tv, int y0, int y1,
                               FragmentSpan& span, int band) {
   const ShadingState& st = *ds.st;
@@ -277,137 +414,90 @@ void Context::raster_triangle(const DrawSetup& ds, const std::array<const Window
   const Arithmetic arith = profile_.arithmetic;
   const int vx = ds.vx, vy = ds.vy;
   const bool has_depth = ds.has_depth, flat = ds.flat, shade = ds.shade;
-  SpanScratch& sc = band < 0 ? span_scratch_ : band_scratch_[static_cast<std::size_t>(band)];
+  SpanScratch& sc = scratch_of(band);
   // `span` to the per-fragment operations; `band` >= 0: on a worker (no probe, plans ready).
-  auto count_fragments = [&](int n) {  // fragments_written_, or this band's share of it
-    if (band < 0) fragments_written_ += static_cast<std::uint64_t>(n);
-    else band_fragments_[static_cast<std::size_t>(band)] += static_cast<std::uint64_t>(n);
-  };
-  auto write = [&] {
-    if (band < 0 && !ds.direct_writes) {
-      write_fragments(span);
-    } else {  // write_fragments without the plan update and the probe (done, off), here or on a worker
-      count_fragments(span.count);
-      run_fragment_plan(*fragment_current_plan_, fragment_current_constants_, span, ds.buffers, fb_.width());
-    }
-  };
-  auto count_fast_run = [&] {
-    if (band < 0) ++fast_runs_;
-    else ++band_fast_runs_[static_cast<std::size_t>(band)];
-  };
+  auto write = [&] { write_span(ds, span, band); };
   const bool span_path = fast_paths_ && span_path_supported(st, plan, shade);
   const std::array<SnappedVertex, 3> sv{tv[0]->p, tv[1]->p, tv[2]->p};
   if (span_path && (band >= 0 || ds.direct_writes)) {
-    // The span path for the whole triangle (no probe): runs' weights are gathered
-    // and shaded in one go (per-call costs paid once per group of rows, not once
-    // per row), then each run goes to the fragment operations in row order. A
-    // group closes at kGroupFragments fragments so its arrays stay in cache; a
-    // run of kLongRun fragments or more is shaded on its own, in place.
+    // The span path (no probe): runs' weights are gathered into a group and
+    // shaded in one go (per-call costs paid once per group, not once per row or
+    // per triangle), then go to the fragment operations. A group holds runs of
+    // consecutive triangles of the glEnd (the caller ends it with shade_group)
+    // as long as their pixels are distinct: a run that meets a pixel of the group
+    // (a bit per pixel in sc.taken) closes the group first. It also closes at
+    // kGroupFragments fragments so its arrays stay in cache, and when a triangle
+    // shares texture coordinates between units differently (coords_reuse_mask).
+    // A run of kLongRun fragments or more is shaded on its own, in place.
+    // Without the bits (a window over kTakenWords words), a group ends with its
+    // triangle.
     constexpr int kGroupFragments = 512, kLongRun = 64;
-    // A run's framebuffer lines (colour, depth) are requested before it is
-    // shaded and arrive meanwhile: the fragment operations waited on these loads.
-    auto prefetch_run = [&](int y, int x0, int len) {
-      if (!ds.buffers.codes || y < 0 || y >= fb_.height() || x0 < 0 || x0 + len > fb_.width()) return;
-      const std::size_t p0 = static_cast<std::size_t>(y) * static_cast<std::size_t>(fb_.width()) + static_cast<std::size_t>(x0);
-      const std::size_t p1 = p0 + static_cast<std::size_t>(len) - 1;
-      for (std::size_t p = p0; p < p1 + 8; p += 8) __builtin_prefetch(ds.buffers.codes + 4 * std::min(p, p1), 1);
-      if (ds.buffers.depth)
-        for (std::size_t p = p0; p < p1 + 16; p += 16) __builtin_prefetch(ds.buffers.depth + std::min(p, p1), 1);
-    };
-    TriangleCoverage tcov;
-    int group_fragments = 0;
-    auto clear_group = [&] {
-      group_fragments = 0;
-      sc.weight.clear();
-      sc.run_y.clear();
-      sc.run_x0.clear();
-      sc.run_length.clear();
-    };
-    auto shade_group = [&] {
-      if (sc.run_length.empty()) return;
-      const FastRuns runs{sc.weight.data(), sc.run_length.data(), static_cast<int>(sc.run_length.size()),
-                          group_fragments};
-      sc.codes.resize(4 * static_cast<std::size_t>(runs.count));
-      if (has_depth) sc.depth.resize(static_cast<std::size_t>(runs.count));
-      for (int r = 0; r < runs.runs; ++r)
-        prefetch_run(sc.run_y[static_cast<std::size_t>(r)] + vy, sc.run_x0[static_cast<std::size_t>(r)] + vx, runs.length[r]);
-      shade_runs_fast(st, plan, tv, tcov, runs, flat, shade, sc.codes.data(), has_depth ? sc.depth.data() : nullptr, sc);
-      // The fragment operations for the whole group in one call when every run
-      // lies inside the write rectangle (window and scissor) and the colour is
-      // codes: the triangle's fragments are distinct pixels, so the buffers end
-      // the same as with the runs one by one.
-      const WriteRect& rect = fragment_current_constants_.rect;
-      bool listed = ds.buffers.codes != nullptr;
-      for (int r = 0; r < runs.runs && listed; ++r) {
-        const int y = sc.run_y[static_cast<std::size_t>(r)] + vy, x0 = sc.run_x0[static_cast<std::size_t>(r)] + vx;
-        listed = y >= rect.y0 && y < rect.y1 && x0 >= rect.x0 && x0 + runs.length[r] <= rect.x1;
-      }
-      if (listed) {
-        // Each run's pixel indices eight at a time (a run of a small triangle is a
-        // few pixels): the last block may write past the run into the next run's
-        // slots, which that run then overwrites; the list holds 7 slots more.
-        sc.pixel.resize(static_cast<std::size_t>(runs.count) + 7);
-        const auto W = static_cast<std::uint32_t>(fb_.width());
-        std::uint32_t* px = sc.pixel.data();
-        for (int r = 0, off = 0; r < runs.runs; off += runs.length[r], ++r) {
-          const auto first = static_cast<std::uint32_t>(sc.run_y[static_cast<std::size_t>(r)] + vy) * W +
-                             static_cast<std::uint32_t>(sc.run_x0[static_cast<std::size_t>(r)] + vx);
-          for (int i = 0; i < runs.length[r]; i += 8)
-            for (int j = 0; j < 8; ++j) px[off + i + j] = first + static_cast<std::uint32_t>(i + j);
-        }
-        if (band < 0) fast_runs_ += static_cast<std::uint64_t>(runs.runs);
-        else band_fast_runs_[static_cast<std::size_t>(band)] += static_cast<std::uint64_t>(runs.runs);
-        count_fragments(runs.count);
-        run_fragment_plan_pixels(*fragment_current_plan_, fragment_current_constants_, sc.codes.data(),
-                                 has_depth ? sc.depth.data() : nullptr, sc.pixel.data(), runs.count, ds.buffers);
-        clear_group();
-        return;
-      }
-      for (int r = 0, off = 0; r < runs.runs; off += runs.length[r], ++r) {
-        const auto o = static_cast<std::size_t>(off), len = static_cast<std::size_t>(runs.length[r]);
-        span.y = sc.run_y[static_cast<std::size_t>(r)] + vy;
-        span.x0 = sc.run_x0[static_cast<std::size_t>(r)] + vx;
-        span.count = runs.length[r];
-        span.codes.assign(sc.codes.begin() + static_cast<std::ptrdiff_t>(4 * o),
-                          sc.codes.begin() + static_cast<std::ptrdiff_t>(4 * (o + len)));
-        if (has_depth)
-          span.depth.assign(sc.depth.begin() + static_cast<std::ptrdiff_t>(o), sc.depth.begin() + static_cast<std::ptrdiff_t>(o + len));
-        count_fast_run();
-        write();
-      }
-      clear_group();
-    };
+    constexpr std::size_t kTakenWords = std::size_t{1} << 17;  // 1 MiB: windows up to 8 Mpixels
+    const std::size_t words = (static_cast<std::size_t>(fb_.width()) + 63) / 64;
+    const bool across = words * static_cast<std::size_t>(fb_.height()) <= kTakenWords;
+    if (across && (sc.taken_words != words || sc.taken.size() != words * static_cast<std::size_t>(fb_.height()))) {
+      shade_group(ds, span, band);  // (none open: the window is the same for a whole glEnd)
+      sc.taken.assign(words * static_cast<std::size_t>(fb_.height()), 0);
+      sc.taken_words = words;
+    }
+    bool opened = false;  // this triangle is the group's last
     auto gather = [&](const TriangleCoverage& cov, const CoverageRun& run) {
-      const int n = run.count;
+      const int n = run.count, y = run.y + vy, x0 = run.x0 + vx;
       if (n >= kLongRun) {  // a long run pays its per-call costs alone: shaded in place, not copied
-        shade_group();
-        span.y = run.y + vy;
-        span.x0 = run.x0 + vx;
+        shade_group(ds, span, band);
+        opened = false;
+        span.y = y;
+        span.x0 = x0;
         span.count = n;
-        prefetch_run(span.y, span.x0, n);
+        prefetch_run(ds.buffers, fb_.width(), fb_.height(), y, x0, n);
         span.codes.resize(4 * static_cast<std::size_t>(n));
         if (has_depth) span.depth.resize(static_cast<std::size_t>(n));
         const FastRuns one{run.weight.data(), &n, 1, n};
-        shade_runs_fast(st, plan, tv, cov, one, flat, shade, span.codes.data(), has_depth ? span.depth.data() : nullptr, sc);
-        count_fast_run();
+        const GroupTriangle g{tv, cov, 0, 0};
+        shade_runs_fast(st, plan, &g, 1, one, flat, shade, span.codes.data(), has_depth ? span.depth.data() : nullptr, sc);
+        count_written(band, 0, 1);
         write();
         return;
       }
-      tcov = cov;
-      sc.run_y.push_back(run.y);
-      sc.run_x0.push_back(run.x0);
+      RowBits rb{};
+      if (across) {
+        rb = row_bits(static_cast<std::size_t>(y) * sc.taken_words, x0, n);
+        if ((sc.taken[rb.word] & rb.lo) || (rb.hi && (sc.taken[rb.word + 1] & rb.hi))) {
+          shade_group(ds, span, band);  // a pixel of the group: it goes first
+          opened = false;
+          ++sc.met;
+        }
+      }
+      if (!opened) {
+        const unsigned reuse = coords_reuse_mask(plan, tv);
+        if (!sc.triangles.empty() && reuse != sc.coords_reuse) shade_group(ds, span, band);
+        sc.coords_reuse = reuse;
+        if (!sc.triangles.empty()) ++sc.joined;
+        sc.triangles.push_back({tv, cov, static_cast<int>(sc.run_length.size()), sc.group_fragments});
+        opened = true;
+      }
+      if (across) {
+        sc.taken[rb.word] |= rb.lo;
+        if (rb.hi) sc.taken[rb.word + 1] |= rb.hi;
+        sc.marked = true;
+      }
+      sc.run_y.push_back(y);
+      sc.run_x0.push_back(x0);
       sc.run_length.push_back(n);
       sc.weight.push_back(run.weight[0]);
-      group_fragments += n;
-      if (group_fragments >= kGroupFragments) shade_group();
+      sc.group_fragments += n;
+      if (sc.group_fragments >= kGroupFragments) {
+        shade_group(ds, span, band);
+        opened = false;
+      }
     };
-    clear_group();
     rasterize_triangle(
         sv, profile_.subpixel_bits, ds.cx0, y0, ds.cx1, y1,  // (one capture: no allocation)
         [&gather](const TriangleCoverage& cov, const CoverageRun& run) { gather(cov, run); }, RunWeights::First);
-    shade_group();
+    if (!across) shade_group(ds, span, band);
     return;
   }
+  shade_group(ds, span, band);  // (none open: the span path is the same for a whole glEnd)
   // One run into `span` (the probe is on, or the span path does not apply).
   auto shade_run = [&](const TriangleCoverage& cov, const CoverageRun& run) {
     const std::int64_t A = cov.area;
@@ -422,8 +512,9 @@ void Context::raster_triangle(const DrawSetup& ds, const std::array<const Window
     // reference path, which records what it computes), or every fragment below.
     if (span_path && !(probe_.enabled() && probe_.y() == span.y && probe_.x() >= span.x0 && probe_.x() < span.x0 + n)) {
       const FastRuns one{run.weight.data(), &n, 1, n};
-      shade_runs_fast(st, plan, tv, cov, one, flat, shade, span.codes.data(), has_depth ? span.depth.data() : nullptr, sc);
-      count_fast_run();
+      const GroupTriangle g{tv, cov, 0, 0};
+      shade_runs_fast(st, plan, &g, 1, one, flat, shade, span.codes.data(), has_depth ? span.depth.data() : nullptr, sc);
+      count_written(band, 0, 1);
       write();
       return;
     }
@@ -514,6 +605,7 @@ void Context::draw_polygon(std::vector<ClipVertex>& poly, std::size_t provoking,
   if (!prepare_polygon(poly, provoking, ds, wv)) return;
   FragmentSpan span;  // reused from run to run
   for (std::size_t i = 1; i + 1 < wv.size(); ++i) raster_triangle(ds, {&wv[0], &wv[i], &wv[i + 1]}, ds.cy0, ds.cy1, span, -1);
+  shade_group(ds, span, -1);  // (the next polygon reuses window_scratch_)
 }
 
 void Context::clear_batch() {
@@ -570,6 +662,7 @@ void Context::flush_batch(const DrawSetup& ds) {
   if (batch_area_ < kSplitFragments || bands < 2) {  // not worth the pool: in order on this thread
     FragmentSpan span;
     for (const BatchTriangle& t : batch_triangles_) raster_triangle(ds, tri(t), ds.cy0, ds.cy1, span, -1);
+    shade_group(ds, span, -1);
     return;
   }
   if (band_scratch_.size() < static_cast<std::size_t>(bands)) {
@@ -587,6 +680,7 @@ void Context::flush_batch(const DrawSetup& ds) {
     FragmentSpan& bs = band_spans_[static_cast<std::size_t>(b)];
     for (const BatchTriangle& t : batch_triangles_)  // every triangle, in order; only this band's rows
       if (t.r0 < y1 && t.r1 > y0) raster_triangle(ds, tri(t), y0, y1, bs, b);
+    shade_group(ds, bs, b);
   });
 }
 

@@ -143,6 +143,19 @@ void texture_coordinates(const std::array<const WindowVertex*, 3>& tv, int u, co
 
 }  // namespace
 
+unsigned coords_reuse_mask(const ShadingPlan& plan, const std::array<const WindowVertex*, 3>& tv) {
+  unsigned mask = 0;
+  int computed = -1;  // the last unit whose coordinates are computed
+  for (int u = 0; u < kShadeUnits; ++u) {
+    if (!plan.sample[u]) continue;
+    bool same = computed >= 0;
+    for (int k = 0; k < 3 && same; ++k) same = tv[k]->tcw[computed] == tv[k]->tcw[u];
+    if (same) mask |= 1u << u;
+    else computed = u;
+  }
+  return mask;
+}
+
 bool Context::span_path_supported(const ShadingState& st, const ShadingPlan& plan, bool shade) const {
   if (profile_.arithmetic != Arithmetic::Fixed) return false;
   if (shade)
@@ -151,16 +164,41 @@ bool Context::span_path_supported(const ShadingState& st, const ShadingPlan& pla
   return true;
 }
 
-void Context::shade_runs_fast(const ShadingState& st, const ShadingPlan& plan,
-                              const std::array<const WindowVertex*, 3>& tv, const TriangleCoverage& cov,
-                              const FastRuns& runs, bool flat, bool shade, std::uint16_t* out, std::uint32_t* depth,
-                              SpanScratch& sc) {
+void Context::shade_runs_fast(const ShadingState& st, const ShadingPlan& plan, const GroupTriangle* tris,
+                              int triangles, const FastRuns& runs, bool flat, bool shade, std::uint16_t* out,
+                              std::uint32_t* depth, SpanScratch& sc) {
   const int n = runs.count;
   const auto N = static_cast<std::size_t>(n);
   sc.lane.resize(N);
+  // Per-triangle work (colour and depth codes, texture coordinates) triangle by
+  // triangle, each on its own runs and fragments; the rest once for the group.
+  auto each = [&](auto&& f) {
+    for (int i = 0; i < triangles; ++i) {
+      const GroupTriangle& g = tris[i];
+      const int r1 = i + 1 < triangles ? tris[i + 1].run_begin : runs.runs;
+      const int f1 = i + 1 < triangles ? tris[i + 1].fragment_begin : n;
+      f(g, FastRuns{runs.first + g.run_begin, runs.length + g.run_begin, r1 - g.run_begin, f1 - g.fragment_begin},
+        static_cast<std::size_t>(g.fragment_begin));
+    }
+  };
   if (fb_.has_depth())
-    interpolate_code_runs(runs.first, runs.length, runs.runs, cov.dwdx, cov.area, tv[0]->depth, tv[1]->depth,
-                          tv[2]->depth, depth);
+    each([&](const GroupTriangle& g, const FastRuns& r, std::size_t off) {
+      interpolate_code_runs(r.first, r.length, r.runs, g.cov.dwdx, g.cov.area, g.tv[0]->depth, g.tv[1]->depth,
+                            g.tv[2]->depth, depth + off);
+    });
+  // s/q and t/q of unit u into sc.s, sc.t. texture_coordinates writes up to 3
+  // slots past a triangle's last run: into the next triangle's, which that one
+  // then overwrites, or into the 3 spare slots after the last.
+  auto coordinates = [&](int u) {
+    each([&](const GroupTriangle& g, const FastRuns& r, std::size_t off) {
+      texture_coordinates(g.tv, u, g.cov, r, sc.s.data() + off, sc.t.data() + off);
+    });
+  };
+  auto colors = [&](bool secondary, std::uint16_t* to) {
+    each([&](const GroupTriangle& g, const FastRuns& r, std::size_t off) {
+      interpolate_colors(g.tv, secondary, g.cov, r, flat, sc.lane, to + 4 * off);
+    });
+  };
   // One unit whose REPLACE of an RGBA texture at the colour width is the whole
   // result (no other unit, no colour sum, no combiners): its texels are the
   // fragments' colours (texture_environment's REPLACE: Ct, At), sampled straight
@@ -185,12 +223,12 @@ void Context::shade_runs_fast(const ShadingState& st, const ShadingPlan& plan,
   if (replace_unit >= 0) {
     sc.s.resize(N + 3);  // (texture_coordinates writes up to 3 slots past the last run)
     sc.t.resize(N + 3);
-    texture_coordinates(tv, replace_unit, cov, runs, sc.s.data(), sc.t.data());
+    coordinates(replace_unit);
     sample_span_fixed(*st.units[replace_unit].texture, st.units[replace_unit].dims, sc.s.data(), sc.t.data(), n,
                       st.sample, out);
     return;
   }
-  interpolate_colors(tv, false, cov, runs, flat, sc.lane, out);  // the primary colour, shaded in place
+  colors(false, out);  // the primary colour, shaded in place
   if (!shade) return;
 
   const bool combine = combiners_.enabled;
@@ -198,28 +236,18 @@ void Context::shade_runs_fast(const ShadingState& st, const ShadingPlan& plan,
   const bool need_secondary = combine ? cp->secondary_needed : plan.color_sum;
   if (need_secondary) {
     sc.secondary.resize(4 * N);
-    interpolate_colors(tv, true, cov, runs, flat, sc.lane, sc.secondary.data());
+    colors(true, sc.secondary.data());
   }
   // Texture coordinates (the per-fragment path's operations exactly: Σ in k
   // order from 0, divided by A, then s/q and t/q) and the span's texels.
   sc.s.resize(N + 3);  // (texture_coordinates writes up to 3 slots past the last run)
   sc.t.resize(N + 3);
-  int coords_of = -1;  // the unit whose coordinates sc.s, sc.t hold
-  auto same_coords = [&](int a, int b) {  // the same s/w, t/w, q/w at all three vertices
-    for (int k = 0; k < 3; ++k)
-      if (tv[k]->tcw[a] != tv[k]->tcw[b]) return false;
-    return true;
-  };
+  // Units fed the same coordinates (the paper's maps on units 0 and 1) get the
+  // same s/q, t/q: computed once (coords_reuse_mask, the same for every triangle).
+  const unsigned reuse = coords_reuse_mask(plan, tris[0].tv);
   for (int u = 0; u < kShadeUnits; ++u) {
     if (!plan.sample[u]) continue;
-    // Units fed the same coordinates (the paper's maps on units 0 and 1) get the
-    // same s/q, t/q: computed once. (−0 == +0, and the two give the same sums:
-    // every sum starts from +0, so a ±0 term changes nothing. A NaN never
-    // compares equal: it recomputes.)
-    if (coords_of < 0 || !same_coords(coords_of, u)) {
-      texture_coordinates(tv, u, cov, runs, sc.s.data(), sc.t.data());
-      coords_of = u;
-    }
+    if (!(reuse & (1u << u))) coordinates(u);
     sc.texels[u].resize(4 * N);
     sample_span_fixed(*st.units[u].texture, st.units[u].dims, sc.s.data(), sc.t.data(), n, st.sample,
                       sc.texels[u].data());
@@ -271,7 +299,7 @@ void Context::shade_runs_fast(const ShadingState& st, const ShadingPlan& plan,
     // primary colour, kept aside before the first unit changes `out`).
     if (!primary_kept) {  // (units before this one may have changed `out`)
       sc.primary.resize(4 * N);
-      interpolate_colors(tv, false, cov, runs, flat, sc.lane, sc.primary.data());
+      colors(false, sc.primary.data());
       primary_kept = true;
     }
     Texel t{};

@@ -17,4 +17,11 @@ struct WindowVertex {
   std::array<std::array<double, 3>, kMaxTextureUnits> tcw{};  // s/w, t/w, q/w
 };
 
+// The span path's sharing of texture coordinates (sim/draw_span.cpp): bit u is
+// set when sampled unit u has the same s/w, t/w, q/w at all three vertices as the
+// last earlier sampled unit whose coordinates are computed, and so the same s/q,
+// t/q (computed once). (−0 == +0 gives the same sums, every sum starts from +0;
+// a NaN never compares equal: it recomputes.)
+unsigned coords_reuse_mask(const ShadingPlan& plan, const std::array<const WindowVertex*, 3>& tv);
+
 }  // namespace ffsim

@@ -312,3 +312,91 @@ TEST_CASE("fast draw: vertex colours converted once per run of equal colours, sp
     }
   }
 }
+
+namespace {
+
+// A strip of small triangles wandering over part of the window (so later
+// triangles land on pixels of earlier ones), with order-dependent fragment
+// operations, and two units whose coordinates are the same at some vertices and
+// not at others (the sharing of coordinates changes from triangle to triangle).
+void draw_folded_strip(Context& c, std::uint32_t seed, int vertices) {
+  SceneRng r(seed);
+  random_clear_and_projection(c, r, 0.5);
+  c.matrixMode(gl::PROJECTION);  // window coordinates
+  c.loadIdentity();
+  c.ortho(0, c.framebuffer().width(), 0, c.framebuffer().height(), -1, 1);
+  c.matrixMode(gl::MODELVIEW);
+  c.loadIdentity();
+  for (int u = 0; u < 2; ++u) random_texture(c, r, u, static_cast<std::uint32_t>(1 + u));
+  if (r.b(40)) random_combiners(c, r);
+  else c.disable(gl::REGISTER_COMBINERS_NV);
+  c.shadeModel(gl::SMOOTH);
+  switch (seed % 3) {
+    case 0:  // blending: every fragment reads what the one before it on its pixel wrote
+      c.enable(gl::BLEND);
+      c.blendFunc(gl::ONE, r.b(50) ? gl::ONE : gl::ONE_MINUS_SRC_ALPHA);
+      c.blendEquation(r.b(50) ? gl::FUNC_ADD : gl::FUNC_REVERSE_SUBTRACT);
+      break;
+    case 1:  // stencil counts the fragments per pixel; the alpha test drops some
+      c.enable(gl::STENCIL_TEST);
+      c.stencilFunc(gl::GEQUAL, 3, 0xFF);
+      c.stencilOp(gl::INCR, gl::DECR, gl::INCR);
+      c.enable(gl::ALPHA_TEST);
+      c.alphaFunc(gl::GREATER, 0.2);
+      break;
+    default:  // depth test with writes: the nearer fragment wins whatever the order of stages
+      c.enable(gl::DEPTH_TEST);
+      c.depthFunc(r.b(50) ? gl::LESS : gl::GEQUAL);
+      c.enable(gl::BLEND);
+      c.blendFunc(gl::SRC_ALPHA, gl::ONE_MINUS_SRC_ALPHA);
+      break;
+  }
+  const double W = c.framebuffer().width(), H = c.framebuffer().height();
+  double x = r.d(0.3 * W, 0.7 * W), y = r.d(0.3 * H, 0.7 * H);
+  c.begin(r.b(70) ? gl::TRIANGLE_STRIP : gl::TRIANGLES);
+  for (int k = 0; k < vertices; ++k) {
+    x = std::clamp(x + r.d(-7, 7), 0.0, W);
+    y = std::clamp(y + r.d(-7, 7), 0.0, H);
+    c.color4(r.d(0, 1), r.d(0, 1), r.d(0, 1), r.d(0, 1));
+    const double s = r.d(-2, 2), t = r.d(-2, 2), q = r.b(70) ? 1.0 : r.d(0.5, 2);
+    c.multiTexCoord4(gl::TEXTURE0, s, t, 0, q);
+    if (r.b(70)) c.multiTexCoord4(gl::TEXTURE1, s, t, 0, q);
+    else c.multiTexCoord4(gl::TEXTURE1, r.d(-2, 2), r.d(-2, 2), 0, q);
+    c.vertex3(x, y, r.d(-0.9, 0.9));
+  }
+  c.end();
+}
+
+}  // namespace
+
+TEST_CASE("fast draw: runs of several triangles shaded as one group (strips that meet their own pixels), span == per-fragment, 1 and 2 threads") {
+  // The span path gathers the runs of consecutive triangles into one group while
+  // their pixels are distinct; a run on a pixel of the group closes it first.
+  std::uint64_t joined = 0, met = 0;
+  for (const char* profile : {"geforce256", "rgba12"})
+    for (int threads : {1, 2})
+      for (std::uint32_t seed = 1200; seed < 1200 + kCases / 2; ++seed) {
+        Pair p(profile, 96, 80);
+        for (Context* c : {&p.fast, &p.slow}) {
+          c->set_threads(threads);
+          draw_folded_strip(*c, seed, 240);
+        }
+        INFO("profile ", std::string(profile), " threads ", threads, " seed ", seed);
+        REQUIRE(buffer_hashes(p.fast) == buffer_hashes(p.slow));
+        CHECK(p.slow.span_group_stats().joined == 0);
+        joined += p.fast.span_group_stats().joined;
+        met += p.fast.span_group_stats().met;
+      }
+  CHECK(joined > 1000);
+  CHECK(met > 100);
+}
+
+TEST_CASE("fast draw: a window over the group bitmap's size (a group per triangle), span == per-fragment") {
+  // 4096 x 2050 pixels need 64 x 2050 > 2^17 words of one bit per pixel: groups
+  // end with their triangle there.
+  Pair p("geforce256", 4096, 2050);
+  for (Context* c : {&p.fast, &p.slow}) draw_folded_strip(*c, 1300, 120);
+  REQUIRE(buffer_hashes(p.fast) == buffer_hashes(p.slow));
+  CHECK(p.fast.fast_runs() > 100);
+  CHECK(p.fast.span_group_stats().joined == 0);
+}
