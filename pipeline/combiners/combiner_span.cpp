@@ -1,6 +1,7 @@
 #include "pipeline/combiners/combiner_span.h"
 
 #include <algorithm>
+#include <bit>
 #include <cstring>
 #include <type_traits>
 
@@ -134,8 +135,15 @@ struct Kernel {
     auto code = [&](P x) { return static_cast<std::int32_t>(std::clamp(round_away((x - bias) * scale2, eight_m), -M, M)); };
     for (int o = 0; o < 3; ++o) {
       if (p.dest[static_cast<std::size_t>(o)] < 0) continue;
+      // A dot product's lanes are equal (broadcast above), and so are a sum or MUX
+      // of two: the code is computed for lane 0 and copied.
+      const bool equal_lanes = L == 3 && (o == 0 ? p.ab_dot : o == 1 ? p.cd_dot : p.ab_dot && p.cd_dot);
       for (int l = 0; l < L; ++l) {
         std::int32_t* d = out[o][l];
+        if (equal_lanes && l > 0) {
+          copy_lanes(out[o][0], n, d);
+          continue;
+        }
         const P* x_ab = ab[l];
         const P* x_cd = cd[l];
         if (o == 0)
@@ -225,23 +233,24 @@ struct Kernel {
         out[4 * i + l] = static_cast<std::uint16_t>((2 * x * nmax + m4) / (2 * m4));
       }
     }
-    if (rgb_const) {
-      const std::uint16_t r = out[0], g = out[1], bl = out[2];
-      for (int i = 1; i < n; ++i) {
-        out[4 * i] = r;
-        out[4 * i + 1] = g;
-        out[4 * i + 2] = bl;
-      }
-    }
     // G: code = floor((2·e·N + M) / 2M), e in [0, M]; below 2^32 for M <= 32767.
     final_reg(f.var[6], 0, n, e);
+    std::uint32_t g[kChunk];
     if constexpr (kM != 0 && kM <= 32767) {
       const auto nm = static_cast<std::uint32_t>(nmax);
-      for (int i = 0; i < n; ++i)
-        out[4 * i + 3] = static_cast<std::uint16_t>((2 * static_cast<std::uint32_t>(e[i]) * nm + kM) / (2 * std::uint32_t{kM}));
+      for (int i = 0; i < n; ++i) g[i] = (2 * static_cast<std::uint32_t>(e[i]) * nm + kM) / (2 * std::uint32_t{kM});
     } else {
-      for (int i = 0; i < n; ++i) out[4 * i + 3] = static_cast<std::uint16_t>((2 * Acc{e[i]} * nmax + m) / (2 * Acc{m}));
+      for (int i = 0; i < n; ++i) g[i] = static_cast<std::uint32_t>((2 * Acc{e[i]} * nmax + m) / (2 * Acc{m}));
     }
+    if (rgb_const) {  // each fragment's four codes as one 64-bit word: the constant RGB and its alpha
+      const std::uint64_t rgb = std::uint64_t{out[0]} | std::uint64_t{out[1]} << 16 | std::uint64_t{out[2]} << 32;
+      std::uint64_t px[kChunk];
+      for (int i = 0; i < n; ++i) px[i] = rgb | std::uint64_t{g[i]} << 48;
+      static_assert(std::endian::native == std::endian::little, "R in the low 16 bits is the first code in memory");
+      std::memcpy(out, px, sizeof(std::uint64_t) * static_cast<std::size_t>(n));
+      return;
+    }
+    for (int i = 0; i < n; ++i) out[4 * i + 3] = static_cast<std::uint16_t>(g[i]);
   }
 
   void run(const CombinerInputsFixed& in, const std::array<double, 4>& fog_color, std::uint16_t* out) {
@@ -273,8 +282,13 @@ struct Kernel {
       for (int r = 0; r < kRegisterCount; ++r)
         if (first == 0 || dest[r])
           for (auto& comp : reg[r]) fill_lanes(comp, n, 0);
-      set_constants(plan.constant_codes, n);
-      for (int c = 0; c < 3; ++c) fill_lanes(reg[kFog][c], n, fog[c]);
+      // The constant colours and fog RGB are set in the first chunk (the widest)
+      // and hold in the later ones: no stage writes them. (Plans with per-stage
+      // constants, which overwrite them, set them again in every chunk.)
+      if (first == 0 || own_constants || dest[kConstantColor0] || dest[kConstantColor1] || dest[kFog]) {
+        set_constants(plan.constant_codes, n);
+        for (int c = 0; c < 3; ++c) fill_lanes(reg[kFog][c], n, fog[c]);
+      }
       if (in.fog_factor) {
         const bool identity = static_cast<std::uint32_t>(M()) == unorm_max(cfg.color_bits);
         for (int i = 0; i < n; ++i) {
