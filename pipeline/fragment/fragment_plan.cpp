@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstring>
 #include <stdexcept>
 #include <type_traits>
 #include <vector>
@@ -382,6 +383,18 @@ inline __m128i interleaved_lanes(__m128i m, __m128i s, __m128i d) {
 }
 #endif
 
+#ifdef __AVX2__
+template <Interleaved kOp>
+inline __m256i interleaved_lanes(__m256i m, __m256i s, __m256i d) {  // interleaved_lanes on four pixels
+  if constexpr (kOp == Interleaved::Copy) return s;
+  else if constexpr (kOp == Interleaved::Add) return _mm256_min_epu16(_mm256_adds_epu16(s, d), m);
+  else if constexpr (kOp == Interleaved::Sub) return _mm256_subs_epu16(s, d);
+  else if constexpr (kOp == Interleaved::RevSub) return _mm256_subs_epu16(d, s);
+  else if constexpr (kOp == Interleaved::Min) return _mm256_min_epu16(s, d);
+  else return _mm256_max_epu16(s, d);
+}
+#endif
+
 template <Interleaved kOp, class Px>
 void color_interleaved(std::uint16_t m, const std::uint16_t* in, std::uint16_t* fb, Px pixel, int n,
                        const std::uint16_t* wmask, const std::uint8_t* alive) {
@@ -390,7 +403,26 @@ void color_interleaved(std::uint16_t m, const std::uint16_t* in, std::uint16_t* 
     const __m128i vm = _mm_set1_epi16(static_cast<std::int16_t>(m));
     const __m128i vw = _mm_setr_epi16(static_cast<std::int16_t>(wmask[0]), static_cast<std::int16_t>(wmask[1]),
                                       static_cast<std::int16_t>(wmask[2]), static_cast<std::int16_t>(wmask[3]), 0, 0, 0, 0);
-    for (int j = 0; j < n; ++j) {
+    int j = 0;
+#ifdef __AVX2__
+    if constexpr (std::is_same_v<Px, RowPixels>) {  // consecutive pixels: four at a time in a 256-bit register
+      const __m256i vm4 = _mm256_set1_epi16(static_cast<std::int16_t>(m));
+      const __m256i vw4 = _mm256_broadcastq_epi64(vw);
+      std::uint16_t* row = fb + 4 * pixel(0);
+      for (; j + 4 <= n; j += 4) {
+        const __m256i d = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(row + 4 * j));
+        const __m256i s = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(in + 4 * j));
+        std::int32_t a4;
+        std::memcpy(&a4, alive + j, sizeof a4);
+        // alive[j..j+3] (0 or 1) widened to one 64-bit lane per pixel, then all ones where alive
+        const __m256i live = _mm256_cmpgt_epi64(_mm256_cvtepu8_epi64(_mm_cvtsi32_si128(a4)), _mm256_setzero_si256());
+        const __m256i w = _mm256_and_si256(vw4, live);
+        const __m256i r = interleaved_lanes<kOp>(vm4, s, d);
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(row + 4 * j), _mm256_or_si256(_mm256_and_si256(r, w), _mm256_andnot_si256(w, d)));
+      }
+    }
+#endif
+    for (; j < n; ++j) {
       std::uint16_t* px = fb + 4 * pixel(j);
       const __m128i d = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(px));
       const __m128i s = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(in + 4 * j));
