@@ -244,10 +244,11 @@ struct Kernel {
     }
     if (rgb_const) {  // each fragment's four codes as one 64-bit word: the constant RGB and its alpha
       const std::uint64_t rgb = std::uint64_t{out[0]} | std::uint64_t{out[1]} << 16 | std::uint64_t{out[2]} << 32;
-      std::uint64_t px[kChunk];
-      for (int i = 0; i < n; ++i) px[i] = rgb | std::uint64_t{g[i]} << 48;
       static_assert(std::endian::native == std::endian::little, "R in the low 16 bits is the first code in memory");
-      std::memcpy(out, px, sizeof(std::uint64_t) * static_cast<std::size_t>(n));
+      for (int i = 0; i < n; ++i) {
+        const std::uint64_t px = rgb | std::uint64_t{g[i]} << 48;
+        std::memcpy(out + 4 * i, &px, sizeof px);
+      }
       return;
     }
     for (int i = 0; i < n; ++i) out[4 * i + 3] = static_cast<std::uint16_t>(g[i]);
