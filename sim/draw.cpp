@@ -431,7 +431,7 @@ void Context::raster_triangle(const DrawSetup& ds, const std::array<const Window
     // A run of kLongRun fragments or more is shaded on its own, in place.
     // Without the bits (a window over kTakenWords words), a group ends with its
     // triangle.
-    constexpr int kGroupFragments = 512, kLongRun = 64;
+    constexpr int kGroupFragments = 1024, kLongRun = 64;
     constexpr std::size_t kTakenWords = std::size_t{1} << 17;  // 1 MiB: windows up to 8 Mpixels
     const std::size_t words = (static_cast<std::size_t>(fb_.width()) + 63) / 64;
     const bool across = words * static_cast<std::size_t>(fb_.height()) <= kTakenWords;
