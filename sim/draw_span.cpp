@@ -1,8 +1,9 @@
-// The span path of the draw (docs/performance.md): the runs of one triangle
-// shaded at once (all of its rows, or one run next to a probed pixel), in fixed
-// profiles, with the same numbers as the per-fragment path of sim/draw.cpp
-// (which stays the reference and serves --probe). Every fragment's numbers
-// depend only on its own weights; only the DDAs below restart at every run:
+// The span path of the draw (docs/performance.md): a group of runs shaded at
+// once (the rows of one or several consecutive triangles, or one run next to a
+// probed pixel), in fixed profiles, with the same numbers as the per-fragment
+// path of sim/draw.cpp (which stays the reference and serves --probe). Every
+// fragment's numbers depend only on its own weights and its triangle's vertices;
+// only the DDAs below restart at every run:
 //   - colour and depth codes by interpolate_code_run, the exact DDA form of
 //     interpolate_code (numerics §8.2);
 //   - texture coordinates by the very same binary64 operations, in the same
