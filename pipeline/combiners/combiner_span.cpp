@@ -177,7 +177,12 @@ struct Kernel {
   // before its clamp), so a compile-time M <= 2047 keeps them in int32 (the
   // compiler vectorises them); the RGB sums go to Acc.
   using F = std::conditional_t<kM != 0 && kM <= 2047, std::int32_t, std::int64_t>;
-  void final(int n, std::uint16_t* out) const {
+  // A final combiner whose A..D are ZERO gives every fragment the same RGB: its
+  // three codes, once computed in a span's first chunk (the low 48 bits).
+  bool rgb_known = false;
+  std::uint64_t rgb_word = 0;
+
+  void final(int n, std::uint16_t* out) {
     const PlannedFinal& f = plan.final;
     const std::int32_t Mi = M();
     const F m = Mi, m2 = m * m;
@@ -222,7 +227,7 @@ struct Kernel {
     bool rgb_const = true;
     for (std::size_t v = 0; v < 4; ++v) rgb_const &= f.var[v].reg == kZero;
     const int rgb_count = rgb_const ? 1 : n;
-    for (int l = 0; l < 3; ++l) {
+    for (int l = 0; l < 3 && !(rgb_const && rgb_known); ++l) {
       wide(f.var[0], l, rgb_count, a);
       wide(f.var[1], l, rgb_count, b);
       wide(f.var[2], l, rgb_count, c);
@@ -243,7 +248,11 @@ struct Kernel {
       for (int i = 0; i < n; ++i) g[i] = static_cast<std::uint32_t>((2 * Acc{e[i]} * nmax + m) / (2 * Acc{m}));
     }
     if (rgb_const) {  // each fragment's four codes as one 64-bit word: the constant RGB and its alpha
-      const std::uint64_t rgb = std::uint64_t{out[0]} | std::uint64_t{out[1]} << 16 | std::uint64_t{out[2]} << 32;
+      if (!rgb_known) {
+        rgb_word = std::uint64_t{out[0]} | std::uint64_t{out[1]} << 16 | std::uint64_t{out[2]} << 32;
+        rgb_known = true;
+      }
+      const std::uint64_t rgb = rgb_word;
       static_assert(std::endian::native == std::endian::little, "R in the low 16 bits is the first code in memory");
       for (int i = 0; i < n; ++i) {
         const std::uint64_t px = rgb | std::uint64_t{g[i]} << 48;

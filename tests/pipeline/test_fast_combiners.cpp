@@ -6,6 +6,7 @@
 // register grid. Outputs must be identical.
 #include <doctest/doctest.h>
 
+#include <functional>
 #include <random>
 #include <vector>
 
@@ -29,11 +30,15 @@ struct Case {
   CombinerInputsFixed in;
 };
 
-Case random_case(std::mt19937& rng, CombinerConfig cfg, bool skip_dead) {
+// `edit` may change the random state before it is planned.
+Case random_case(std::mt19937& rng, CombinerConfig cfg, bool skip_dead,
+                 const std::function<void(CombinerState&)>& edit = {}) {
   Case c;
   cfg.rounding = rng() % 2 ? CombinerRounding::PerProduct : CombinerRounding::PerStage;
   cfg.rc2_secondary_alpha = rng() % 2;
-  c.plan = plan_combiners(random_state(rng, cfg), cfg, skip_dead);
+  CombinerState state = random_state(rng, cfg);
+  if (edit) edit(state);
+  c.plan = plan_combiners(state, cfg, skip_dead);
   const int count = 1 + static_cast<int>(rng() % 200);
   const std::uint32_t cmax = (1u << cfg.color_bits) - 1, tmax = (1u << cfg.texture_bits) - 1;
   auto fill = [&](std::vector<std::uint16_t>& v, std::size_t n, std::uint32_t max) {
@@ -53,11 +58,14 @@ Case random_case(std::mt19937& rng, CombinerConfig cfg, bool skip_dead) {
   return c;
 }
 
-void compare(const Profile& profile, int iterations, unsigned seed) {
+void compare(const Profile& profile, int iterations, unsigned seed,
+             const std::function<void(CombinerState&, std::mt19937&)>& edit = {}) {
   std::mt19937 rng(seed);
   const CombinerConfig cfg = CombinerConfig::from_profile(profile);
   for (int it = 0; it < iterations; ++it) {
-    const Case c = random_case(rng, cfg, it % 4 != 0);
+    std::function<void(CombinerState&)> e;
+    if (edit) e = [&](CombinerState& st) { edit(st, rng); };
+    const Case c = random_case(rng, cfg, it % 4 != 0, e);
     const std::array<double, 4> fog_color{0.25, 0.5, 0.75, 1.0};
     std::vector<std::uint16_t> generic(4 * static_cast<std::size_t>(c.in.count)), fast(generic.size(), 7);
     shade_span(c.plan, c.in, fog_color, generic.data());
@@ -91,6 +99,17 @@ TEST_CASE("fast combiners: span kernel == shade_span at widths off the register 
   p.texture_bits = 8;
   p.combiner_bits = 12;  // M = 2047: entry conversion widens colours, narrows nothing
   compare(p, 300, 15);
+}
+
+TEST_CASE("fast combiners: a final combiner whose A..D are ZERO (one RGB for the span), every mapping, spans across chunks") {
+  // The kernel computes that RGB once per span and stores it with each fragment's
+  // alpha; ZERO inverted is 1, so A·B + (1 − A)·C + D takes the values 0, 1 and 2.
+  auto zero_abcd = [](CombinerState& st, std::mt19937& rng) {
+    for (std::size_t v = 0; v < 4; ++v)
+      st.final_var[v] = VariableState{gl::ZERO, rng() % 2 ? gl::UNSIGNED_IDENTITY_NV : gl::UNSIGNED_INVERT_NV, gl::RGB};
+  };
+  compare(*find_builtin_profile("geforce256"), 400, 18, zero_abcd);
+  compare(*find_builtin_profile("rgba12"), 200, 19, zero_abcd);
 }
 
 TEST_CASE("fast combiners: float profiles are left to shade_span") {
