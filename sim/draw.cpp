@@ -349,12 +349,12 @@ void Context::clear_group(SpanScratch& sc) {
 
 void Context::shade_group(const DrawSetup& ds, FragmentSpan& span, int band) {
   SpanScratch& sc = scratch_of(band);
+  if (sc.run_length.empty()) return;  // (no runs: no triangles, no bits set)
   struct Emptied {  // however this ends (the fragment operations may throw)
     Context& c;
     SpanScratch& sc;
     ~Emptied() { c.clear_group(sc); }
   } emptied{*this, sc};
-  if (sc.run_length.empty()) return;
   const FastRuns runs{sc.weight.data(), sc.run_length.data(), static_cast<int>(sc.run_length.size()), sc.group_fragments};
   const bool has_depth = ds.has_depth;
   sc.codes.resize(4 * static_cast<std::size_t>(runs.count));
