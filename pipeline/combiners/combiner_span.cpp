@@ -49,32 +49,169 @@ inline void copy_lanes(const std::int32_t* s, int n, std::int32_t* d) {
 #endif
 }
 
-// kM: the register maximum M when fixed at compile time (0: plan.M at run time).
-// P: the integer type of mapped products and stage sums (see the header).
-template <std::int32_t kM, class Acc>
-struct Kernel {
-  using P = std::conditional_t<kM != 0 && kM <= 2047, std::int32_t, std::int64_t>;
-  // Registers are left uninitialised here: run() zeroes the first n entries of
-  // each chunk (short runs of small triangles must not pay for 12 KB of zeroes).
-  Kernel(const CombinerPlan& p, std::int32_t m) : plan(p), M_rt(m) {}
-  const CombinerPlan& plan;
-  const std::int32_t M_rt;
-  std::int32_t M() const { return kM ? kM : M_rt; }
+// One variable of a fused product loop: its source lanes and its mapping
+// (mapped = mul·clamp(c, lo, hi) + add, input_mapping.h).
+struct Src {
+  const std::int32_t* p;
+  std::int32_t lo, hi, mul, add;
+};
 
-  alignas(64) std::int32_t reg[kRegisterCount][4][kChunk];
+// One product term x∘y. A term whose y is the same for every fragment of the
+// span (ZERO, a constant colour, the fog colour, a register nothing wrote) is
+// folded: K·(mul·clamp(c) + add) = (K·mul)·clamp(c) + K·add with K = y's mapped
+// value, exact in integers, so x alone carries it (one clamp and one
+// multiply-add instead of two mappings and a multiply).
+struct Term {
+  Src x, y;  // a folded term: x only
+};
 
-  // div_round_half_away (snorm.h) in P.
-  static P round_away(P num, P den) {
-    const P q = (2 * (num < 0 ? -num : num) + den) / (2 * den);
-    return num < 0 ? -q : q;
+// Product kinds in fused_output's template: the number of terms (1: A∘B of one
+// lane, 3: the dot product over three lanes; 0: not part of X), plus kFolded
+// when every term is folded.
+constexpr int kFolded = 8;
+
+// div_round_half_away (snorm.h) in P, and its magnitude min(|q|, M) with the
+// sign applied (the output code's clamp to [−M, M]): the division is unsigned
+// (the numerator is non-negative), which vectorises in fewer instructions.
+template <class P>
+[[gnu::always_inline]] inline P round_away(P num, P den) {
+  using U = std::make_unsigned_t<P>;
+  const P q = static_cast<P>(static_cast<U>(2 * (num < 0 ? -num : num) + den) / static_cast<U>(2 * den));
+  return num < 0 ? -q : q;
+}
+template <class P>
+[[gnu::always_inline]] inline P round_away_clamped(P num, P den, P max) {
+  using U = std::make_unsigned_t<P>;
+  const P q = std::min(static_cast<P>(static_cast<U>(2 * (num < 0 ? -num : num) + den) / static_cast<U>(2 * den)), max);
+  return num < 0 ? -q : q;
+}
+
+// The output code of one portion output over n lanes, in one loop from the
+// register lanes to the code: out[i] = code(X) with X = AB, CD, AB + CD or
+// MUX(AB, CD). kAB, kCD: the products' kinds (above); ab and cd hold their terms.
+// kPerProduct: every product rounded to the register grid first
+// (CombinerRounding::PerProduct). code(X) = round((X + bias)·2·scale / 8M) half
+// away, clamped to [−M, M] (general_combiner.h's output_code).
+template <class P>
+[[gnu::always_inline]] inline P mapped(const Src& s, int i) {
+  const std::int32_t v = s.p[i];
+  return static_cast<P>(s.mul * (v < s.lo ? s.lo : v > s.hi ? s.hi : v) + s.add);
+}
+// Term t at fragment i: x∘y, or x alone when folded; rounded to the register
+// grid (4M units) first with per-product rounding.
+template <class P, bool kFoldedTerm, bool kPerProduct>
+[[gnu::always_inline]] inline P product(const Term& t, int i, P four_m) {
+  P x;
+  if constexpr (kFoldedTerm) x = mapped<P>(t.x, i);
+  else x = mapped<P>(t.x, i) * mapped<P>(t.y, i);
+  if constexpr (kPerProduct) x = four_m * round_away(x, four_m);
+  return x;
+}
+// The sum of a product's terms at fragment i (kind: see kFolded).
+template <class P, int kKind, bool kPerProduct>
+[[gnu::always_inline]] inline P product_sum(const Term& t0, const Term& t1, const Term& t2, int i, P four_m) {
+  constexpr bool f = (kKind & kFolded) != 0;
+  if constexpr ((kKind & 7) == 0) return 0;
+  else if constexpr ((kKind & 7) == 1) return product<P, f, kPerProduct>(t0, i, four_m);
+  else
+    return product<P, f, kPerProduct>(t0, i, four_m) + product<P, f, kPerProduct>(t1, i, four_m) +
+           product<P, f, kPerProduct>(t2, i, four_m);
+}
+
+// The output code of one portion output over n lanes, in one loop from the
+// register lanes to the code: out[i] = code(X) with X = AB, CD, AB + CD or
+// MUX(AB, CD). kAB, kCD: the products' kinds (above); ab and cd hold their terms.
+// kPerProduct: every product rounded to the register grid first
+// (CombinerRounding::PerProduct). code(X) = round((X + bias)·2·scale / 8M) half
+// away, clamped to [−M, M] (general_combiner.h's output_code).
+template <class P, std::int32_t kM, int kAB, int kCD, bool kMux, bool kPerProduct>
+void fused_output(const Term* ab, const Term* cd, const std::int32_t* spare0_a, P M_rt, P scale2, P bias, int n,
+                  std::int32_t* __restrict out) {
+  const P M = kM ? P{kM} : M_rt, four_m = 4 * M, eight_m = 8 * M;
+  // The terms in locals (the loop then keeps their fields in registers).
+  const Term a0 = ab[0], a1 = ab[(kAB & 7) == 3 ? 1 : 0], a2 = ab[(kAB & 7) == 3 ? 2 : 0];
+  const Term c0 = cd[0], c1 = cd[(kCD & 7) == 3 ? 1 : 0], c2 = cd[(kCD & 7) == 3 ? 2 : 0];
+  for (int i = 0; i < n; ++i) {
+    const P x_ab = product_sum<P, kAB, kPerProduct>(a0, a1, a2, i, four_m);
+    const P x_cd = product_sum<P, kCD, kPerProduct>(c0, c1, c2, i, four_m);
+    P x;
+    if constexpr (kMux) x = 2 * P{spare0_a[i]} >= M ? x_cd : x_ab;  // spare0.a >= 1/2, exact
+    else x = x_ab + x_cd;
+    out[i] = static_cast<std::int32_t>(round_away_clamped((x - bias) * scale2, eight_m, M));
   }
+}
 
-  // Input entry (register_combiners.cpp's Entry): identity when the grids agree.
-  void load(const std::uint16_t* src, int bits, int comps, int reg_index, int n, std::size_t first) {
-    const bool identity = static_cast<std::uint32_t>(M()) == unorm_max(bits);
+// kind as a compile-time constant: f(std::integral_constant<int, kind>).
+template <class F>
+void with_kind(int kind, F f) {
+  switch (kind) {
+    case 1: return f(std::integral_constant<int, 1>{});
+    case 3: return f(std::integral_constant<int, 3>{});
+    case 1 | kFolded: return f(std::integral_constant<int, 1 | kFolded>{});
+    case 3 | kFolded: return f(std::integral_constant<int, 3 | kFolded>{});
+    default: return f(std::integral_constant<int, 0>{});
+  }
+}
+
+// fused_output with its kinds and flags as compile-time constants. Folded
+// kinds occur only with a compile-time M and without per-product rounding
+// (portion() folds nothing otherwise), which keeps the instantiations few.
+template <class P, std::int32_t kM>
+void fused_output_rt(int ab_kind, int cd_kind, bool mux, bool per_product, const Term* ab, const Term* cd,
+                     const std::int32_t* spare0_a, P M, P scale2, P bias, int n, std::int32_t* out) {
+  with_kind(ab_kind, [&](auto kab) {
+    with_kind(cd_kind, [&](auto kcd) {
+      constexpr int a = kab.value, c = kcd.value;
+      constexpr bool folded = ((a | c) & kFolded) != 0;
+      if constexpr (a != 0 || c != 0) {
+        if (mux) {
+          if constexpr (a != 0 && c != 0 && !folded) {
+            if (per_product) fused_output<P, kM, a, c, true, true>(ab, cd, spare0_a, M, scale2, bias, n, out);
+            else fused_output<P, kM, a, c, true, false>(ab, cd, spare0_a, M, scale2, bias, n, out);
+          } else if constexpr (a != 0 && c != 0 && kM != 0) {
+            fused_output<P, kM, a, c, true, false>(ab, cd, spare0_a, M, scale2, bias, n, out);
+          }
+        } else if constexpr (!folded) {
+          if (per_product) fused_output<P, kM, a, c, false, true>(ab, cd, spare0_a, M, scale2, bias, n, out);
+          else fused_output<P, kM, a, c, false, false>(ab, cd, spare0_a, M, scale2, bias, n, out);
+        } else if constexpr (kM != 0) {
+          fused_output<P, kM, a, c, false, false>(ab, cd, spare0_a, M, scale2, bias, n, out);
+        }
+      }
+    });
+  });
+}
+
+// The register lanes of a span (the part of the kernel that does not depend on
+// M or the accumulator types; one copy of this code for every instantiation).
+//
+// Registers are views: view[r][c] points at the lanes that hold component c of
+// register r for the current chunk. A stage's outputs go to fresh lane arrays
+// and their registers' views are pointed at them, so nothing is copied: a dot
+// product's three equal lanes are one array, SPARE0 alpha starts as a view of
+// TEXTURE0 alpha, and unwritten registers view one array of zeroes. Lane arrays
+// are left uninitialised here: run() fills the first lanes8(n) of the first
+// chunk (short runs of small triangles must not pay for full chunks).
+struct RegisterLanes {
+  const std::int32_t* view[kRegisterCount][4];
+  alignas(64) std::int32_t zero[kChunk];
+  alignas(64) std::int32_t constant[2][4][kChunk];  // CONSTANT_COLOR0/1: the global ones
+  alignas(64) std::int32_t stage_constant[2][4][kChunk];  // the stage's own (RC2 PER_STAGE_CONSTANTS)
+  alignas(64) std::int32_t fog[4][kChunk];
+  alignas(64) std::int32_t input[kRegisterCount][4][kChunk];  // the loaded inputs (primary, secondary, textures)
+  // The program's outputs, one array per op: per stage at most 3 outputs x 3 RGB
+  // lanes and 3 alpha.
+  static constexpr int kMaxOps = kMaxGeneralCombiners * 12;
+  alignas(64) std::int32_t output[kMaxOps][kChunk];
+
+  // Input entry (register_combiners.cpp's Entry) into input[reg_index]: identity
+  // when the grids agree (M the register maximum, combiner_bits its width).
+  void load(const std::uint16_t* src, int bits, int comps, int reg_index, int n, std::size_t first, std::int32_t M,
+            int combiner_bits) {
+    const bool identity = static_cast<std::uint32_t>(M) == unorm_max(bits);
+    std::int32_t(&r)[4][kChunk] = input[reg_index];
 #ifdef __SSE4_1__
     if (identity && comps == 4) {  // four fragments at a time: interleaved RGBA codes transposed to the four lanes
-      std::int32_t(&r)[4][kChunk] = reg[reg_index];
       const std::uint16_t* s = src + 4 * first;
       int i = 0;
       for (; i + 4 <= n; i += 4) rgba16_to_lanes(s + 4 * i, r[0] + i, r[1] + i, r[2] + i, r[3] + i);
@@ -85,91 +222,153 @@ struct Kernel {
     }
 #endif
     for (int c = 0; c < comps; ++c) {
-      std::int32_t* d = reg[reg_index][c];
+      std::int32_t* d = r[c];
       const std::uint16_t* s = src + 4 * first + static_cast<std::size_t>(c);
       if (identity)
         for (int i = 0; i < n; ++i) d[i] = s[4 * i];
       else
-        for (int i = 0; i < n; ++i) d[i] = snorm_from_unorm(s[4 * i], bits, plan.config.combiner_bits);
+        for (int i = 0; i < n; ++i) d[i] = snorm_from_unorm(s[4 * i], bits, combiner_bits);
       std::fill(d + n, d + lanes8(n), 0);  // the scratch lanes up to a multiple of 8 (see run)
     }
   }
 
-  void set_constants(const std::array<std::array<std::int32_t, 4>, 2>& k, int n) {
+  static void fill_constants(const std::array<std::array<std::int32_t, 4>, 2>& k, std::int32_t (&to)[2][4][kChunk],
+                             int n) {
+    for (int q = 0; q < 2; ++q)
+      for (int c = 0; c < 4; ++c) fill_lanes(to[q][c], n, k[static_cast<std::size_t>(q)][static_cast<std::size_t>(c)]);
+  }
+  void view_constants(std::int32_t (&from)[2][4][kChunk]) {
     for (int c = 0; c < 4; ++c) {
-      fill_lanes(reg[kConstantColor0][c], n, k[0][static_cast<std::size_t>(c)]);
-      fill_lanes(reg[kConstantColor1][c], n, k[1][static_cast<std::size_t>(c)]);
+      view[kConstantColor0][c] = from[0][c];
+      view[kConstantColor1][c] = from[1][c];
     }
   }
+};
 
-  // portion_fixed<L> over the chunk: outputs o (AB, CD, SUM/MUX) into out[o][l].
+// kM: the register maximum M when fixed at compile time (0: plan.M at run time).
+// P: the integer type of mapped products and stage sums (see the header).
+template <std::int32_t kM, class Acc>
+struct Kernel : RegisterLanes {
+  using P = std::conditional_t<kM != 0 && kM <= 2047, std::int32_t, std::int64_t>;
+  Kernel(const CombinerPlan& p, std::int32_t m) : plan(p), M_rt(m) {}
+  const CombinerPlan& plan;
+  const std::int32_t M_rt;
+  std::int32_t M() const { return kM ? kM : M_rt; }
+
+  // Which views hold one value for the whole span (filled once per span, never
+  // written by a stage): ZERO and unwritten registers, the constants, the fog
+  // colour, and FOG alpha without per-fragment fog.
+  bool span_constant[kRegisterCount][4];
+
+  // One fused loop of the span's program: an output's lanes (fused_output_rt).
+  struct Op {
+    int ab_kind, cd_kind;
+    bool mux;
+    P scale2, bias;
+    const std::int32_t* spare0_a;
+    std::int32_t* out;
+    Term ab[3], cd[3];
+  };
+  Op ops[kMaxOps];
+  int op_count = 0;
+  int stage_end[kMaxGeneralCombiners];  // ops of stage s: [stage_end[s-1], stage_end[s])
+
+  // The terms of product x∘y over `count` lanes (three for a dot product) from
+  // lane `first`: folded when every term has a span-constant side (kM fixed and
+  // no per-product rounding only, see fused_output_rt). Returns the kind.
+  int make_terms(const Src* x, const bool* x_const, const Src* y, const bool* y_const, int first, int count, bool fold,
+                 Term* out) const {
+    for (int t = first; t < first + count; ++t) fold &= x_const[t] || y_const[t];
+    for (int t = first; t < first + count; ++t) {
+      Term& term = out[t - first];
+      if (!fold) {
+        term = {x[t], y[t]};
+        continue;
+      }
+      const bool y_k = y_const[t];
+      const Src& k = y_k ? y[t] : x[t];  // the constant side
+      const Src& v = y_k ? x[t] : y[t];
+      const std::int32_t kv = map_fixed(MappingCoeffs{k.lo, k.hi, k.mul, k.add}, k.p[0]);
+      term.x = {v.p, v.lo, v.hi, kv * v.mul, kv * v.add};
+      term.y = {};
+    }
+    return count | (fold ? kFolded : 0);
+  }
+
+  // One portion of the program: an op per live output lane, computed into a
+  // fresh array (one for the three lanes of a dot product's, or a sum or MUX of
+  // two). Returns in out[o][l] the arrays of output o, lane l.
   template <int L>
-  void portion(const PlannedPortion& p, bool per_product, int n, std::int32_t (&out)[3][3][kChunk]) {
-    const P M = this->M(), four_m = 4 * M, eight_m = 8 * M, two_m2 = 2 * M * M;
-    P mv[4][3][kChunk];
+  void portion(const PlannedPortion& p, bool per_product, const std::int32_t* (&out)[3][3]) {
+    Src src[4][3];
+    bool constant[4][3];
     for (int v = 0; v < 4; ++v) {
-      if (v < 2 ? !p.need_ab : !p.need_cd) continue;
       const PlannedVar& var = p.var[static_cast<std::size_t>(v)];
-      const MappingCoeffs k = var.k;
       for (int l = 0; l < L; ++l) {
-        const std::int32_t* src = reg[var.reg][var.comp[static_cast<std::size_t>(l)]];
-        for (int i = 0; i < n; ++i) mv[v][l][i] = static_cast<P>(k.mul * std::clamp(src[i], k.lo, k.hi) + k.add);
+        const int c = var.comp[static_cast<std::size_t>(l)];
+        src[v][l] = {view[var.reg][c], var.k.lo, var.k.hi, var.k.mul, var.k.add};
+        constant[v][l] = span_constant[var.reg][c];
       }
     }
-    P ab[3][kChunk], cd[3][kChunk];
-    auto products = [&](int a, int b, bool dot, P(&r)[3][kChunk]) {
-      if (per_product)  // every product first rounded to the register grid
-        for (int l = 0; l < L; ++l)
-          for (int i = 0; i < n; ++i) r[l][i] = four_m * round_away(mv[a][l][i] * mv[b][l][i], four_m);
-      else
-        for (int l = 0; l < L; ++l)
-          for (int i = 0; i < n; ++i) r[l][i] = mv[a][l][i] * mv[b][l][i];
-      if (L == 3 && dot)  // the sum of the three lane products, broadcast
-        for (int i = 0; i < n; ++i) r[0][i] = r[1][i] = r[2][i] = r[0][i] + r[1][i] + r[2][i];
-    };
-    if (p.need_ab) products(0, 1, p.ab_dot, ab);
-    if (p.need_cd) products(2, 3, p.cd_dot, cd);
-    const std::int32_t* spare0_a = reg[kSpare0][3];
-    const P scale2 = p.scale2, bias = p.bias ? two_m2 : 0;
-    // output_code: round((x + bias)·2·scale / 8M) half away, clamp to [−M, M].
-    auto code = [&](P x) { return static_cast<std::int32_t>(std::clamp(round_away((x - bias) * scale2, eight_m), -M, M)); };
+    const P M = this->M();
+    const bool fold = kM != 0 && !per_product;
+    const bool ab_dot = L == 3 && p.ab_dot, cd_dot = L == 3 && p.cd_dot;
     for (int o = 0; o < 3; ++o) {
       if (p.dest[static_cast<std::size_t>(o)] < 0) continue;
-      // A dot product's lanes are equal (broadcast above), and so are a sum or MUX
-      // of two: the code is computed for lane 0 and copied.
-      const bool equal_lanes = L == 3 && (o == 0 ? p.ab_dot : o == 1 ? p.cd_dot : p.ab_dot && p.cd_dot);
+      const bool use_ab = o != 1, use_cd = o != 0;
+      // Lanes of a dot product are equal, and so are those of a sum or MUX of two.
+      const bool equal_lanes = (!use_ab || ab_dot) && (!use_cd || cd_dot);
       for (int l = 0; l < L; ++l) {
-        std::int32_t* d = out[o][l];
         if (equal_lanes && l > 0) {
-          copy_lanes(out[o][0], n, d);
+          out[o][l] = out[o][0];
           continue;
         }
-        const P* x_ab = ab[l];
-        const P* x_cd = cd[l];
-        if (o == 0)
-          for (int i = 0; i < n; ++i) d[i] = code(x_ab[i]);
-        else if (o == 1)
-          for (int i = 0; i < n; ++i) d[i] = code(x_cd[i]);
-        else if (p.mux)  // MUX: spare0.a >= 1/2 (exact: 2·spare0.a >= M) selects CD
-          for (int i = 0; i < n; ++i) d[i] = code(2 * P{spare0_a[i]} >= M ? x_cd[i] : x_ab[i]);
-        else
-          for (int i = 0; i < n; ++i) d[i] = code(x_ab[i] + x_cd[i]);
+        Op& op = ops[op_count];
+        op.out = output[op_count++];
+        op.mux = o == 2 && p.mux;
+        op.scale2 = p.scale2;
+        op.bias = p.bias ? 2 * M * M : 0;
+        op.spare0_a = view[kSpare0][3];
+        op.ab_kind = !use_ab ? 0
+                     : ab_dot ? make_terms(src[0], constant[0], src[1], constant[1], 0, 3, fold, op.ab)
+                              : make_terms(src[0], constant[0], src[1], constant[1], l, 1, fold, op.ab);
+        op.cd_kind = !use_cd ? 0
+                     : cd_dot ? make_terms(src[2], constant[2], src[3], constant[3], 0, 3, fold, op.cd)
+                              : make_terms(src[2], constant[2], src[3], constant[3], l, 1, fold, op.cd);
+        out[o][l] = op.out;
       }
     }
   }
 
-  void stage(const PlannedStage& st, bool per_product, int n) {
-    std::int32_t rgb[3][3][kChunk], alpha[3][3][kChunk];
-    if (st.rgb.run) portion<3>(st.rgb, per_product, n, rgb);
-    if (st.alpha.run) portion<1>(st.alpha, per_product, n, alpha);
-    // write_outputs: RGB outputs to R, G, B, then alpha outputs to A.
+  // A stage of the program: both portions read the stage's input registers,
+  // then the outputs are written (their views moved): RGB outputs to R, G, B,
+  // then alpha outputs to A.
+  void record_stage(const PlannedStage& st, bool per_product) {
+    const std::int32_t* rgb[3][3];
+    const std::int32_t* alpha[3][3];
+    if (st.rgb.run) portion<3>(st.rgb, per_product, rgb);
+    if (st.alpha.run) portion<1>(st.alpha, per_product, alpha);
     if (st.rgb.run)
       for (int o = 0; o < 3; ++o)
         if (const int d = st.rgb.dest[static_cast<std::size_t>(o)]; d >= 0)
-          for (int c = 0; c < 3; ++c) copy_lanes(rgb[o][c], n, reg[d][c]);
+          for (int c = 0; c < 3; ++c) {
+            view[d][c] = rgb[o][c];
+            span_constant[d][c] = false;
+          }
     if (st.alpha.run)
       for (int o = 0; o < 3; ++o)
-        if (const int d = st.alpha.dest[static_cast<std::size_t>(o)]; d >= 0) copy_lanes(alpha[o][0], n, reg[d][3]);
+        if (const int d = st.alpha.dest[static_cast<std::size_t>(o)]; d >= 0) {
+          view[d][3] = alpha[o][0];
+          span_constant[d][3] = false;
+        }
+  }
+
+  void run_ops(int begin, int end, bool per_product, int n) {
+    for (int i = begin; i < end; ++i) {
+      const Op& op = ops[i];
+      fused_output_rt<P, kM>(op.ab_kind, op.cd_kind, op.mux, per_product, op.ab, op.cd, op.spare0_a, M(), op.scale2,
+                             op.bias, n, op.out);
+    }
   }
 
   // final_combiner_fixed<Acc> over the chunk, variable by variable. F: the lanes'
@@ -191,7 +390,7 @@ struct Kernel {
     const Acc m4 = Acc{m2} * m2;
     // final_reg: UNSIGNED_INVERT 1 − clamp01, UNSIGNED_IDENTITY max(0, ·), in units of 1/M.
     auto final_reg = [&](const PlannedVar& v, int lane, int count, F* r) {
-      const std::int32_t* c = reg[v.reg][v.comp[static_cast<std::size_t>(lane)]];
+      const std::int32_t* c = view[v.reg][v.comp[static_cast<std::size_t>(lane)]];
       if (v.mapping == Mapping::UnsignedInvert)
         for (int i = 0; i < count; ++i) r[i] = Mi - std::clamp(c[i], 0, Mi);
       else
@@ -205,11 +404,14 @@ struct Kernel {
         for (int i = 0; i < n; ++i) ef[l][i] = e[i] * fv[i];
       }
     if (f.need_spare0_plus_secondary)
-      for (int l = 0; l < 3; ++l)
+      for (int l = 0; l < 3; ++l) {
+        const std::int32_t* s0 = view[kSpare0][l];
+        const std::int32_t* s1 = view[kSecondaryColor][l];
         for (int i = 0; i < n; ++i) {
-          const F s = F{std::max(reg[kSpare0][l][i], 0)} + std::max(reg[kSecondaryColor][l][i], 0);
+          const F s = F{std::max(s0[i], 0)} + std::max(s1[i], 0);
           sps[l][i] = f.color_sum_clamp ? std::min(s, m) : s;
         }
+      }
     auto wide = [&](const PlannedVar& v, int l, int count, F* w) {  // units of 1/M^2
       const bool inv = v.mapping == Mapping::UnsignedInvert;
       if (v.reg == kETimesF) {
@@ -268,74 +470,83 @@ struct Kernel {
     const bool per_product = cfg.rounding == CombinerRounding::PerProduct;
     bool own_constants = false;
     for (const PlannedStage& st : plan.stages) own_constants |= st.own_constants;
-    std::int32_t fog[3];
+    const bool color_identity = static_cast<std::uint32_t>(M()) == unorm_max(cfg.color_bits);
+    // Every fragment starts from zeroed registers with the inputs entered (the
+    // reference's order). The per-span values (zeroes, constants, fog colour,
+    // fog alpha without fog) are filled for the first chunk's lanes, the widest,
+    // and hold for the later chunks: nothing writes those arrays.
+    const int n0 = std::min(kChunk, in.count);
+    fill_lanes(zero, n0, 0);
+    fill_constants(plan.constant_codes, constant, n0);
     for (int c = 0; c < 3; ++c) {
       const std::uint32_t k = unorm_from_double(fog_color[static_cast<std::size_t>(c)], cfg.color_bits);
-      fog[c] = static_cast<std::uint32_t>(M()) == unorm_max(cfg.color_bits)
-                   ? static_cast<std::int32_t>(k)
-                   : snorm_from_unorm(k, cfg.color_bits, cfg.combiner_bits);
+      fill_lanes(fog[c], n0, color_identity ? static_cast<std::int32_t>(k) : snorm_from_unorm(k, cfg.color_bits, cfg.combiner_bits));
     }
-    // The reference starts every fragment from zeroed registers. Every register is
-    // zeroed once, for the first chunk's lanes (the widest); a later chunk
-    // re-zeroes only the registers a stage writes. The others are rewritten in
-    // every chunk by the set-up below (constants, fog, loaded inputs, spare0.a)
-    // or never written, so they hold the same values as after a full zeroing.
-    bool dest[kRegisterCount] = {};
-    for (const PlannedStage& st : plan.stages)
-      for (const PlannedPortion* p : {&st.rgb, &st.alpha})
-        if (p->run)
-          for (const std::int8_t d : p->dest)
-            if (d >= 0) dest[d] = true;
+    if (!in.fog_factor) fill_lanes(fog[3], n0, M());  // FOG alpha = 1 with fog disabled
+    // The registers' views at the input of stage 0, then the span's program: the
+    // views are the same in every chunk (only the arrays' contents change), so
+    // the stages are planned once, with the views they read and write.
+    const bool secondary = plan.secondary_needed && in.secondary;
+    for (int r = 0; r < kRegisterCount; ++r)
+      for (int c = 0; c < 4; ++c) {
+        const bool loaded = (r == kPrimaryColor && plan.primary_needed) || (r == kSecondaryColor && secondary && (c < 3 || cfg.rc2_secondary_alpha)) ||
+                            (r >= kTexture0 && plan.texture_needed[static_cast<std::size_t>(r - kTexture0)] && in.texture[static_cast<std::size_t>(r - kTexture0)]);
+        view[r][c] = loaded ? input[r][c] : zero;
+        span_constant[r][c] = !loaded;
+      }
+    view_constants(constant);
+    for (int c = 0; c < 4; ++c) view[kFog][c] = fog[c];
+    span_constant[kFog][3] = !in.fog_factor;
+    view[kSpare0][3] = view[kTexture0][3];  // SPARE0 alpha = texture 0 alpha
+    span_constant[kSpare0][3] = span_constant[kTexture0][3];
+    op_count = 0;
+    for (std::size_t s = 0; s < plan.stages.size(); ++s) {
+      const PlannedStage& st = plan.stages[s];
+      if (st.own_constants) {  // the folded constants are read while recording: the stage's own in place
+        fill_constants(st.constant_codes, stage_constant, n0);
+        view_constants(stage_constant);
+      }
+      record_stage(st, per_product);
+      stage_end[s] = op_count;
+    }
+    if (own_constants) view_constants(constant);  // RC2: the final combiner reads the global ones
+
     for (int first = 0; first < in.count; first += kChunk) {
       const int n = std::min(kChunk, in.count - first);
       const auto f0 = static_cast<std::size_t>(first);
-      for (int r = 0; r < kRegisterCount; ++r)
-        if (first == 0 || dest[r])
-          for (auto& comp : reg[r]) fill_lanes(comp, n, 0);
-      // The constant colours and fog RGB are set in the first chunk (the widest)
-      // and hold in the later ones: no stage writes them. (Plans with per-stage
-      // constants, which overwrite them, set them again in every chunk.)
-      if (first == 0 || own_constants || dest[kConstantColor0] || dest[kConstantColor1] || dest[kFog]) {
-        set_constants(plan.constant_codes, n);
-        for (int c = 0; c < 3; ++c) fill_lanes(reg[kFog][c], n, fog[c]);
-      }
       if (in.fog_factor) {
-        const bool identity = static_cast<std::uint32_t>(M()) == unorm_max(cfg.color_bits);
         for (int i = 0; i < n; ++i) {
           const std::uint16_t k = in.fog_factor[f0 + static_cast<std::size_t>(i)];
-          reg[kFog][3][i] = identity ? std::int32_t{k} : snorm_from_unorm(k, cfg.color_bits, cfg.combiner_bits);
+          fog[3][i] = color_identity ? std::int32_t{k} : snorm_from_unorm(k, cfg.color_bits, cfg.combiner_bits);
         }
-        std::fill(reg[kFog][3] + n, reg[kFog][3] + lanes8(n), 0);
-      } else {
-        fill_lanes(reg[kFog][3], n, M());
+        std::fill(fog[3] + n, fog[3] + lanes8(n), 0);
       }
-      if (plan.primary_needed) load(in.primary, cfg.color_bits, 4, kPrimaryColor, n, f0);
-      if (plan.secondary_needed && in.secondary)
-        load(in.secondary, cfg.color_bits, cfg.rc2_secondary_alpha ? 4 : 3, kSecondaryColor, n, f0);
+      const int cb = cfg.combiner_bits;
+      if (plan.primary_needed) load(in.primary, cfg.color_bits, 4, kPrimaryColor, n, f0, M(), cb);
+      if (secondary) load(in.secondary, cfg.color_bits, cfg.rc2_secondary_alpha ? 4 : 3, kSecondaryColor, n, f0, M(), cb);
       for (int u = 0; u < kMaxRegisterTextures; ++u) {
         const std::uint16_t* t = in.texture[static_cast<std::size_t>(u)];
-        if (plan.texture_needed[static_cast<std::size_t>(u)] && t) load(t, cfg.texture_bits, 4, kTexture0 + u, n, f0);
+        if (plan.texture_needed[static_cast<std::size_t>(u)] && t) load(t, cfg.texture_bits, 4, kTexture0 + u, n, f0, M(), cb);
       }
-      copy_lanes(reg[kTexture0][3], n, reg[kSpare0][3]);
       // The general stages run on n rounded up to a multiple of 8 lanes: the
       // vectorised loops then need no scalar remainder (a triangle's group of about
       // 60 fragments spent much of its time there). The extra lanes hold defined,
-      // in-range values (zeroed registers, zero inputs) and are never stored.
+      // in-range values (zeroes, zero inputs) and are never stored.
       const int n8 = lanes8(n);
-      for (const PlannedStage& st : plan.stages) {
-        if (st.own_constants) set_constants(st.constant_codes, n);
-        stage(st, per_product, n8);
+      for (std::size_t s = 0; s < plan.stages.size(); ++s) {
+        const PlannedStage& st = plan.stages[s];
+        if (st.own_constants) fill_constants(st.constant_codes, stage_constant, n);
+        run_ops(s == 0 ? 0 : stage_end[s - 1], stage_end[s], per_product, n8);
       }
-      if (own_constants) set_constants(plan.constant_codes, n);  // RC2: the final combiner reads the global ones
       final(n, out + 4 * f0);
     }
   }
 };
 
 template <std::int32_t kM, class Acc>
-void run_kernel(const CombinerPlan& plan, const CombinerInputsFixed& in, const std::array<double, 4>& fog,
-                std::uint16_t* out) {
-  Kernel<kM, Acc> k(plan, plan.M);  // ~30 KB of stack
+[[gnu::noinline]] void run_kernel(const CombinerPlan& plan, const CombinerInputsFixed& in,
+                                  const std::array<double, 4>& fog, std::uint16_t* out) {  // ~80 KB of stack
+  Kernel<kM, Acc> k(plan, plan.M);
   k.run(in, fog, out);
 }
 
@@ -348,6 +559,12 @@ bool plan_supported(const CombinerPlan& plan) {
         if (v.reg >= kRegisterCount) return false;
   for (std::size_t v = 4; v < 7; ++v)
     if (plan.final.var[v].reg >= kRegisterCount) return false;
+  // Outputs go to read/write registers only (RC: DISCARD, PRIMARY, SECONDARY,
+  // SPARE0/1, TEXTURE<i>); the views of ZERO, the constants and FOG are per span.
+  for (const PlannedStage& st : plan.stages)
+    for (const PlannedPortion* p : {&st.rgb, &st.alpha})
+      for (const std::int8_t d : p->dest)
+        if (d >= 0 && (d < kPrimaryColor || d >= kRegisterCount)) return false;
   return true;
 }
 
