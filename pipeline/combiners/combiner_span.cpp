@@ -11,6 +11,7 @@
 
 #include "pipeline/combiners/final_combiner.h"
 #include "pipeline/combiners/register_combiners.h"
+#include "pipeline/number/const_divide.h"
 #include "pipeline/number/rgba_lanes.h"
 #include "pipeline/number/snorm.h"
 #include "pipeline/number/unorm.h"
@@ -86,6 +87,24 @@ template <class P>
   return num < 0 ? -q : q;
 }
 
+// The output code's rounding, round_away_clamped(num, 8M, M), for a
+// compile-time M: q = floor((|num| + 4M) / 8M) = floor(floor((|num| + 4M) / 8) / M)
+// (nested floors of positive integers), and |num| >= 8M² − 4M gives q >= M,
+// so |num| is first capped there: the dividend is then at most M², which
+// ConstDivide turns into one 32-bit multiply and a shift when that is exact
+// (M = 255; not M = 1023, which divides).
+template <class P, std::int32_t kM>
+[[gnu::always_inline]] inline P output_rounding(P num) {
+  using Div = ConstDivide<static_cast<std::uint32_t>(kM), static_cast<std::uint32_t>(kM) * static_cast<std::uint32_t>(kM)>;
+  if constexpr (kM != 0 && Div::exact && std::is_same_v<P, std::int32_t>) {
+    const P a = std::min(num < 0 ? -num : num, 8 * kM * kM - 4 * kM);
+    const P q = static_cast<P>(Div::divide(static_cast<std::uint32_t>(a + 4 * kM) >> 3));
+    return num < 0 ? -q : q;
+  } else {
+    return round_away_clamped(num, static_cast<P>(8 * kM), static_cast<P>(kM));
+  }
+}
+
 // The output code of one portion output over n lanes, in one loop from the
 // register lanes to the code: out[i] = code(X) with X = AB, CD, AB + CD or
 // MUX(AB, CD). kAB, kCD: the products' kinds (above); ab and cd hold their terms.
@@ -94,8 +113,8 @@ template <class P>
 // away, clamped to [−M, M] (general_combiner.h's output_code).
 template <class P>
 [[gnu::always_inline]] inline P mapped(const Src& s, int i) {
-  const std::int32_t v = s.p[i];
-  return static_cast<P>(s.mul * (v < s.lo ? s.lo : v > s.hi ? s.hi : v) + s.add);
+  // max then min (lo <= hi for every mapping): two instructions per eight lanes.
+  return static_cast<P>(s.mul * std::min(std::max(s.p[i], s.lo), s.hi) + s.add);
 }
 // Term t at fragment i: x∘y, or x alone when folded; rounded to the register
 // grid (4M units) first with per-product rounding.
@@ -128,6 +147,7 @@ template <class P, std::int32_t kM, int kAB, int kCD, bool kMux, bool kPerProduc
 void fused_output(const Term* ab, const Term* cd, const std::int32_t* spare0_a, P M_rt, P scale2, P bias, int n,
                   std::int32_t* __restrict out) {
   const P M = kM ? P{kM} : M_rt, four_m = 4 * M, eight_m = 8 * M;
+  const int scale_shift = std::countr_zero(static_cast<std::uint32_t>(scale2));
   // The terms in locals (the loop then keeps their fields in registers).
   const Term a0 = ab[0], a1 = ab[(kAB & 7) == 3 ? 1 : 0], a2 = ab[(kAB & 7) == 3 ? 2 : 0];
   const Term c0 = cd[0], c1 = cd[(kCD & 7) == 3 ? 1 : 0], c2 = cd[(kCD & 7) == 3 ? 2 : 0];
@@ -137,7 +157,10 @@ void fused_output(const Term* ab, const Term* cd, const std::int32_t* spare0_a, 
     P x;
     if constexpr (kMux) x = 2 * P{spare0_a[i]} >= M ? x_cd : x_ab;  // spare0.a >= 1/2, exact
     else x = x_ab + x_cd;
-    out[i] = static_cast<std::int32_t>(round_away_clamped((x - bias) * scale2, eight_m, M));
+    // scale2 is 1, 2, 4 or 8: a shift (exact for negative x too).
+    const P scaled = (x - bias) << scale_shift;
+    if constexpr (kM != 0) out[i] = static_cast<std::int32_t>(output_rounding<P, kM>(scaled));
+    else out[i] = static_cast<std::int32_t>(round_away_clamped(scaled, eight_m, M));
   }
 }
 
@@ -443,7 +466,9 @@ struct Kernel : RegisterLanes {
     // G: code = floor((2·e·N + M) / 2M), e in [0, M]; below 2^32 for M <= 32767.
     final_reg(f.var[6], 0, n, e);
     std::uint32_t g[kChunk];
-    if constexpr (kM != 0 && kM <= 32767) {
+    if (nmax == Acc{m}) {  // the colour grid is the register grid: (2eM + M) / 2M = e
+      for (int i = 0; i < n; ++i) g[i] = static_cast<std::uint32_t>(e[i]);
+    } else if constexpr (kM != 0 && kM <= 32767) {
       const auto nm = static_cast<std::uint32_t>(nmax);
       for (int i = 0; i < n; ++i) g[i] = (2 * static_cast<std::uint32_t>(e[i]) * nm + kM) / (2 * std::uint32_t{kM});
     } else {
