@@ -13,6 +13,8 @@
 //     kernel exists, else texture_environment per fragment; the colour sum on
 //     codes; or the register combiners' shade_span over all the fragments.
 #include <algorithm>
+#include <bit>
+#include <cmath>
 
 #include "pipeline/combiners/combiner_span.h"
 #include "pipeline/combiners/register_combiners.h"
@@ -69,7 +71,52 @@ void interpolate_colors(const std::array<const WindowVertex*, 3>& tv, bool secon
 //    square, e.g.), x / A and x · 2^−k are the same correctly rounded value of
 //    the same real number (2^−k is exact), subnormal, zero, infinite and NaN
 //    results included: the divisions by A become multiplications.
+//  - When, in addition, A = 2^k, q = 1 and a coordinate's three vertex values
+//    are integer multiples m_j·2^e of one power of two with
+//    2·W·Σ|m_j| < 2^53, W the largest |w_k| of the run's lanes (a screen-aligned
+//    quad with coordinates of a few bits, e.g. texel-aligned), every product and
+//    partial sum of v = ((0 + w_0·c_0) + w_1·c_1) + w_2·c_2 is an integer multiple
+//    of 2^e below 2^53·2^e, so exact, and v·2^−k is exact too: along a run
+//    v_i = V_0 + i·D exactly (D the same formula on the steps dwdx_k, whose
+//    |dwdx_k| <= 2W), and V_0 + i·D computed in binary64 is exact for the same
+//    reason (|i·Σ dwdx_j·m_j| and |Σ w_j·m_j| are within the bound). An exact zero
+//    is +0 both ways (the reference starts from 0 + ·; V_0 is the reference's
+//    value, and x + (−x) = +0). `Progression` checks the bound per run.
 using Coords = std::array<double, 3>;  // s/w, t/w, q/w at a vertex
+
+// Coordinate j (s or t) of a triangle's three vertices as m_k·2^e (e the exponent
+// of the lowest set bit among them, m_k integers); ok false when a value is not
+// finite, a multiple is 2^53 or more, or 2^e·2^−k could underflow.
+struct DyadicCoords {
+  bool ok = false;
+  std::uint64_t sum_m = 0;  // Σ|m_k| < 3·2^53
+
+  DyadicCoords(const Coords& c0, const Coords& c1, const Coords& c2, int j, int k) {
+    const double v[3] = {c0[static_cast<std::size_t>(j)], c1[static_cast<std::size_t>(j)], c2[static_cast<std::size_t>(j)]};
+    int e = 1 << 20;  // the lowest set bit's exponent (no bit: any)
+    for (const double x : v) {
+      if (!std::isfinite(x)) return;
+      if (x == 0) continue;
+      int ex = 0;
+      const double f = std::frexp(x, &ex);  // |f| in [0.5, 1): x = F·2^(ex−53), F = f·2^53 an integer
+      const auto F = static_cast<std::uint64_t>(std::fabs(std::ldexp(f, 53)));
+      e = std::min(e, ex - 53 + std::countr_zero(F));
+    }
+    if (e == 1 << 20) e = 0;  // all three zero
+    if (e - k < -1000) return;  // far from the subnormals: every v·2^−k stays normal or zero
+    for (const double x : v) {
+      const double m = std::fabs(std::ldexp(x, -e));  // an integer (exact: a power-of-two scale)
+      if (m >= 0x1p53) return;
+      sum_m += static_cast<std::uint64_t>(m);
+    }
+    ok = true;
+  }
+  // The bound for a run whose lanes' weights are at most W in magnitude.
+  // 2·W·Σ|m_k| < 2^53, i.e. W·Σ|m_k| <= 2^52 − 1.
+  bool exact_for(std::uint64_t W) const {
+    return ok && (sum_m == 0 || W <= ((std::uint64_t{1} << 52) - 1) / sum_m);
+  }
+};
 
 // x / A: a division, or (kPow2) the multiplication by 1/A = 2^−k, the same value.
 template <bool kPow2>
@@ -107,6 +154,8 @@ void coordinates_stepped(const Coords& c0, const Coords& c1, const Coords& c2, D
   }
 }
 
+}  // namespace
+
 void texture_coordinates(const std::array<const WindowVertex*, 3>& tv, int u, const TriangleCoverage& cov,
                          const FastRuns& runs, double* s, double* t) {
   const double a = static_cast<double>(cov.area);
@@ -117,6 +166,13 @@ void texture_coordinates(const std::array<const WindowVertex*, 3>& tv, int u, co
   const bool unit_q = c0[2] == 1.0 && c1[2] == 1.0 && c2[2] == 1.0 && exact;
   const bool pow2 = exact && (cov.area & (cov.area - 1)) == 0;  // A = 2^k, k <= 52 (area > 0)
   const Coords d{static_cast<double>(cov.dwdx[0]), static_cast<double>(cov.dwdx[1]), static_cast<double>(cov.dwdx[2])};
+  // The exact progression (above): A = 2^k, q = 1, dyadic coordinates.
+  const int k = pow2 ? std::countr_zero(static_cast<std::uint64_t>(cov.area)) : 0;
+  const DyadicCoords ds(c0, c1, c2, 0, k), dt(c0, c1, c2, 1, k);
+  const bool progression = pow2 && unit_q && ds.ok && dt.ok;
+  const ByArea<true> by_pow2{a, 1 / a};
+  double ds_step = 0, dt_step = 0;
+  if (progression) coordinates_at<true>(c0, c1, c2, by_pow2, d[0], d[1], d[2], ds_step, dt_step);
   for (int r = 0, off = 0; r < runs.runs; off += runs.length[r], ++r) {
     const std::array<std::int64_t, 3>& w = runs.first[r];
     const int n = runs.length[r];
@@ -128,6 +184,24 @@ void texture_coordinates(const std::array<const WindowVertex*, 3>& tv, int u, co
       // hold 3 slots more than the fragments.
       const int n4 = (n + 3) & ~3;
       const Coords f{static_cast<double>(w[0]), static_cast<double>(w[1]), static_cast<double>(w[2])};
+      if (progression) {
+        std::uint64_t W = 0;  // the largest |w_k| over the lanes 0 .. n4 − 1 (the ends of each linear weight)
+        for (int j = 0; j < 3; ++j)
+          W = std::max({W, static_cast<std::uint64_t>(std::abs(w[static_cast<std::size_t>(j)])),
+                        static_cast<std::uint64_t>(std::abs(w[static_cast<std::size_t>(j)] + (n4 - 1) * cov.dwdx[static_cast<std::size_t>(j)]))});
+        if (ds.exact_for(W) && dt.exact_for(W)) {
+          double s0 = 0, t0 = 0;  // the reference's value at the run's first fragment
+          coordinates_at<true>(c0, c1, c2, by_pow2, f[0], f[1], f[2], s0, t0);
+          double* so = s + off;
+          double* to = t + off;
+          for (int i = 0; i < n4; ++i) {
+            const double fi = static_cast<double>(i);
+            so[i] = s0 + fi * ds_step;
+            to[i] = t0 + fi * dt_step;
+          }
+          continue;
+        }
+      }
       if (pow2 && unit_q) coordinates_stepped<true>(c0, c1, c2, ByArea<true>{a, 1 / a}, f, d, n4, s + off, t + off);
       else if (pow2) coordinates_stepped<false>(c0, c1, c2, ByArea<true>{a, 1 / a}, f, d, n4, s + off, t + off);
       else if (unit_q) coordinates_stepped<true>(c0, c1, c2, ByArea<false>{a, 0}, f, d, n4, s + off, t + off);
@@ -141,8 +215,6 @@ void texture_coordinates(const std::array<const WindowVertex*, 3>& tv, int u, co
     }
   }
 }
-
-}  // namespace
 
 unsigned coords_reuse_mask(const ShadingPlan& plan, const std::array<const WindowVertex*, 3>& tv) {
   unsigned mask = 0;

@@ -24,4 +24,11 @@ struct WindowVertex {
 // a NaN never compares equal: it recomputes.)
 unsigned coords_reuse_mask(const ShadingPlan& plan, const std::array<const WindowVertex*, 3>& tv);
 
+// s/q and t/q of unit u at the fragments of `runs` of a triangle (sim/draw_span.cpp):
+// the per-fragment path's binary64 values bit for bit. Writes runs.count values
+// to s and t, plus up to 3 scratch values past the end (s and t must hold
+// runs.count + 3).
+void texture_coordinates(const std::array<const WindowVertex*, 3>& tv, int u, const TriangleCoverage& cov,
+                         const FastRuns& runs, double* s, double* t);
+
 }  // namespace ffsim

@@ -4,9 +4,12 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <bit>
+#include <cmath>
 
 #include "fast_scene.h"
 #include "pipeline/raster/triangle.h"
+#include "sim/draw_span.h"
 
 using namespace ffsim;
 using namespace ffsim::test;
@@ -247,6 +250,57 @@ TEST_CASE("fast draw: triangles of power-of-two area (divisions by A as multipli
   CHECK(fast_runs > 500);
 }
 
+TEST_CASE("fast draw: dyadic texture coordinates on power-of-two areas (the exact progression V_0 + i·D), span == per-fragment") {
+  // Right triangles of power-of-two area with affine (q = 1) coordinates that
+  // are integer multiples of a power of two: the span path steps them as
+  // V_0 + i·D when every product and partial sum of the reference's formula is
+  // exact (draw_span.cpp's bound 2·W·Σ|m| < 2^53), and falls back to the formula
+  // otherwise. The multiples range from a few bits (texel-aligned quads) to 50
+  // bits (over the bound), with exponents from 2^-40 to 2^20, zeros and
+  // negatives, so both sides of the bound and exact cancellations to +0 occur.
+  std::uint64_t fast_runs = 0;
+  for (const char* profile : {"geforce256", "rgba12"}) {
+    for (std::uint32_t seed = 500; seed < 500 + kCases; ++seed) {
+      Pair p(profile, 64, 64);
+      for (Context* c : {&p.fast, &p.slow}) {
+        SceneRng rc(seed);
+        for (int u = 0; u < 2; ++u) random_texture(*c, rc, u, static_cast<std::uint32_t>(1 + u));
+        c->matrixMode(gl::PROJECTION);
+        c->loadIdentity();
+        c->ortho(0, 64, 0, 64, -1, 1);
+        c->matrixMode(gl::MODELVIEW);
+        c->loadIdentity();
+        c->enable(gl::BLEND);
+        c->blendFunc(gl::ONE, gl::ONE);
+        c->begin(gl::TRIANGLES);
+        SceneRng rv(seed + 11);
+        auto dyadic = [&] {
+          if (rv.b(10)) return 0.0;
+          const int bits = rv.b(70) ? rv.i(1, 12) : rv.b(50) ? rv.i(13, 30) : rv.i(31, 50);
+          const double m = std::floor(rv.d(-1, 1) * std::ldexp(1.0, bits));
+          return std::ldexp(m, -rv.i(0, 40) + (rv.b(10) ? 60 : 0));
+        };
+        for (int k = 0; k < 8; ++k) {
+          const int x = rv.i(0, 30), y = rv.i(0, 30), a = 1 << rv.i(0, 5), b = 1 << rv.i(0, 5);
+          const bool flip = rv.b(50);
+          const int px[3] = {x, x + a, x}, py[3] = {y, y, y + b};
+          for (int v = 0; v < 3; ++v) {
+            const int i = flip ? 2 - v : v;
+            for (GLenum u = 0; u < 2; ++u) c->multiTexCoord4(gl::TEXTURE0 + u, dyadic(), dyadic(), 0, 1.0);
+            c->color4(rv.d(0, 1), rv.d(0, 1), rv.d(0, 1), rv.d(0, 1));
+            c->vertex3(px[i], py[i], rv.d(-0.9, 0.9));
+          }
+        }
+        c->end();
+      }
+      INFO("profile ", std::string(profile), " seed ", seed);
+      REQUIRE(buffer_hashes(p.fast) == buffer_hashes(p.slow));
+      fast_runs += p.fast.fast_runs();
+    }
+  }
+  CHECK(fast_runs > 500);
+}
+
 TEST_CASE("fast draw: one REPLACE unit (texels straight to the fragment colours), every base format, span == per-fragment") {
   // The span path samples a lone REPLACE unit of an RGBA texture at the colour
   // width straight into the fragment colours; every other base format (RGB keeps
@@ -399,4 +453,64 @@ TEST_CASE("fast draw: a window over the group bitmap's size (a group per triangl
   REQUIRE(buffer_hashes(p.fast) == buffer_hashes(p.slow));
   CHECK(p.fast.fast_runs() > 100);
   CHECK(p.fast.span_group_stats().joined == 0);
+}
+
+TEST_CASE("fast draw: texture_coordinates bit for bit against the reference's formula, dyadic coordinates on power-of-two areas") {
+  // The exact progression V_0 + i·D (draw_span.cpp) is taken when every product
+  // and partial sum is exact; over the bound (coordinates of up to 52 bits on
+  // triangles of up to 2^11 pixels a side) it must fall back to the formula.
+  // Compared as bits (±0 included), without the texture sampling that hides an
+  // ulp.
+  SceneRng r(91);
+  const int S = 4;
+  int compared = 0;
+  for (int k = 0; k < 100 * kCases; ++k) {
+    const int la = r.i(0, k % 4 == 0 ? 11 : 6), lb = r.i(0, k % 4 == 0 ? 11 : 6);
+    const std::int64_t x = r.i(-50, 50) << S, y = r.i(-50, 50) << S;
+    const std::int64_t a = std::int64_t{1} << (la + S), b = std::int64_t{1} << (lb + S);
+    std::array<SnappedVertex, 3> v{SnappedVertex{x, y}, SnappedVertex{x + a, y}, SnappedVertex{x, y + b}};
+    if (r.b(50)) std::swap(v[1], v[2]);
+    std::vector<CoverageRun> runs;
+    const TriangleCoverage cov = rasterize_triangle(v, S, -60, -60, 2200, 2200, [&](const TriangleCoverage&, const CoverageRun& run) {
+      if (runs.size() < 6) runs.push_back(run);
+    });
+    if (runs.empty()) continue;
+    REQUIRE((cov.area & (cov.area - 1)) == 0);  // a power of two
+    auto dyadic = [&] {
+      if (r.b(10)) return r.b(50) ? 0.0 : -0.0;
+      const int bits = r.b(60) ? r.i(1, 12) : r.i(13, 52);
+      const double m = std::floor(r.d(-1, 1) * std::ldexp(1.0, bits));
+      return std::ldexp(m, r.i(-45, 5));
+    };
+    std::array<WindowVertex, 3> wv{};
+    for (auto& w : wv) w.tcw[0] = {dyadic(), dyadic(), 1.0};
+    const std::array<const WindowVertex*, 3> tv{&wv[0], &wv[1], &wv[2]};
+    std::vector<std::array<std::int64_t, 3>> first;
+    std::vector<int> length;
+    int count = 0;
+    for (const CoverageRun& run : runs) {
+      first.push_back(run.weight[0]);
+      length.push_back(static_cast<int>(run.weight.size()));
+      count += length.back();
+    }
+    std::vector<double> s(static_cast<std::size_t>(count) + 3), t(s.size());
+    texture_coordinates(tv, 0, cov, FastRuns{first.data(), length.data(), static_cast<int>(runs.size()), count},
+                        s.data(), t.data());
+    std::size_t f = 0;
+    const double A = static_cast<double>(cov.area);
+    for (const CoverageRun& run : runs)
+      for (const auto& w : run.weight) {
+        double ref[2] = {0.0, 0.0};  // sim/draw.cpp's per-fragment sums, then / A (q = 1: / 1)
+        for (int j = 0; j < 2; ++j) {
+          for (int q = 0; q < 3; ++q) ref[j] += static_cast<double>(w[static_cast<std::size_t>(q)]) * wv[static_cast<std::size_t>(q)].tcw[0][static_cast<std::size_t>(j)];
+          ref[j] = ref[j] / A / 1.0;
+        }
+        INFO("triangle ", k, " fragment ", f);
+        REQUIRE(std::bit_cast<std::uint64_t>(s[f]) == std::bit_cast<std::uint64_t>(ref[0]));
+        REQUIRE(std::bit_cast<std::uint64_t>(t[f]) == std::bit_cast<std::uint64_t>(ref[1]));
+        ++f;
+        ++compared;
+      }
+  }
+  CHECK(compared > 25 * kCases * 100);
 }
