@@ -361,10 +361,23 @@ inline std::uint16_t interleaved_value(std::uint16_t m, std::uint16_t s, std::ui
   else return std::max(s, d);
 }
 
+// Prefetches, for writing, the framebuffer codes [px + 1024, px + codes + 1024):
+// the next chunk's pixels of a row (1024 codes = 256 pixels = kChunk), a line per
+// 64 bytes. The colour stage's reads of consecutive pixels otherwise wait on
+// memory (a 1024^2 window is 8 MB of colour; docs/performance.md 12.6). A
+// prefetch never faults, past the framebuffer's end included (the address is
+// formed as an integer: no pointer past the array).
+inline void prefetch_next_chunk(const std::uint16_t* px, int codes) {
+  const auto base = reinterpret_cast<std::uintptr_t>(px);
+  for (int i = 0; i < codes; i += 32)
+    __builtin_prefetch(reinterpret_cast<const void*>(base + 2 * static_cast<std::uintptr_t>(i + 1024)), 1);
+}
+
 // Every fragment survives (no alpha, stencil or depth test) and every channel is
 // written, on consecutive pixels: the operation on the 4n codes, nothing masked.
 template <Interleaved kOp>
 void color_interleaved_all(std::uint16_t m, const std::uint16_t* in, std::uint16_t* px, int codes) {
+  prefetch_next_chunk(px, codes);
   for (int i = 0; i < codes; ++i) px[i] = interleaved_value<kOp>(m, in[i], px[i]);
 }
 
