@@ -91,6 +91,7 @@ struct DyadicCoords {
   bool ok = false;
   std::uint64_t sum_m = 0;  // Σ|m_k| < 3·2^53
 
+  DyadicCoords() = default;  // not ok
   DyadicCoords(const Coords& c0, const Coords& c1, const Coords& c2, int j, int k) {
     const double v[3] = {c0[static_cast<std::size_t>(j)], c1[static_cast<std::size_t>(j)], c2[static_cast<std::size_t>(j)]};
     int e = 1 << 20;  // the lowest set bit's exponent (no bit: any)
@@ -167,9 +168,12 @@ void texture_coordinates(const std::array<const WindowVertex*, 3>& tv, int u, co
   const bool pow2 = exact && (cov.area & (cov.area - 1)) == 0;  // A = 2^k, k <= 52 (area > 0)
   const Coords d{static_cast<double>(cov.dwdx[0]), static_cast<double>(cov.dwdx[1]), static_cast<double>(cov.dwdx[2])};
   // The exact progression (above): A = 2^k, q = 1, dyadic coordinates.
-  const int k = pow2 ? std::countr_zero(static_cast<std::uint64_t>(cov.area)) : 0;
-  const DyadicCoords ds(c0, c1, c2, 0, k), dt(c0, c1, c2, 1, k);
-  const bool progression = pow2 && unit_q && ds.ok && dt.ok;
+  // (Checked only for such triangles: the decomposition costs a few library calls.)
+  const bool candidate = pow2 && unit_q;
+  const int k = candidate ? std::countr_zero(static_cast<std::uint64_t>(cov.area)) : 0;
+  const DyadicCoords ds = candidate ? DyadicCoords(c0, c1, c2, 0, k) : DyadicCoords();
+  const DyadicCoords dt = candidate ? DyadicCoords(c0, c1, c2, 1, k) : DyadicCoords();
+  const bool progression = candidate && ds.ok && dt.ok;
   const ByArea<true> by_pow2{a, 1 / a};
   double ds_step = 0, dt_step = 0;
   if (progression) coordinates_at<true>(c0, c1, c2, by_pow2, d[0], d[1], d[2], ds_step, dt_step);

@@ -377,7 +377,9 @@ inline void prefetch_next_chunk(const std::uint16_t* px, int codes) {
 // written, on consecutive pixels: the operation on the 4n codes, nothing masked.
 template <Interleaved kOp>
 void color_interleaved_all(std::uint16_t m, const std::uint16_t* in, std::uint16_t* px, int codes) {
-  prefetch_next_chunk(px, codes);
+  // Only after a full chunk (a long span: its next chunk, or the next row of a
+  // large quad, follows); a short run's row beyond it belongs to other primitives.
+  if (codes == 4 * kChunk) prefetch_next_chunk(px, codes);
   for (int i = 0; i < codes; ++i) px[i] = interleaved_value<kOp>(m, in[i], px[i]);
 }
 
