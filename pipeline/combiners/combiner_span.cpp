@@ -22,11 +22,11 @@ namespace {
 
 constexpr int kChunk = 64;  // fragments per pass
 
-// Register lanes are filled and copied n rounded up to 8 at a time (every lane
-// array holds kChunk, a multiple of 8; lanes >= n are scratch nobody reads):
-// fixed-width vector stores instead of a memset/memcpy per register component,
-// whose start-up cost (rep stos/movs) was a third of the kernel's time. The empty
-// asm statement keeps GCC from turning the loops back into memset/memcpy.
+// Register lanes are filled n rounded up to 8 at a time (every lane array holds
+// kChunk, a multiple of 8; lanes >= n are scratch the stages compute on and
+// nobody stores): fixed-width vector stores instead of a memset per array, whose
+// start-up cost (rep stos) was a third of the kernel's time. The empty asm
+// statement keeps GCC from turning the loop back into memset.
 inline int lanes8(int n) { return (n + 7) & ~7; }
 inline void fill_lanes(std::int32_t* d, int n, std::int32_t v) {
 #ifdef __AVX2__
@@ -36,17 +36,7 @@ inline void fill_lanes(std::int32_t* d, int n, std::int32_t v) {
     __asm__ volatile("" ::: "memory");
   }
 #else
-  std::fill_n(d, n, v);
-#endif
-}
-inline void copy_lanes(const std::int32_t* s, int n, std::int32_t* d) {
-#ifdef __AVX2__
-  for (int i = 0; i < lanes8(n); i += 8) {
-    _mm256_storeu_si256(reinterpret_cast<__m256i*>(d + i), _mm256_loadu_si256(reinterpret_cast<const __m256i*>(s + i)));
-    __asm__ volatile("" ::: "memory");
-  }
-#else
-  std::copy_n(s, n, d);
+  std::fill_n(d, lanes8(n), v);  // the scratch lanes too: the stages read them
 #endif
 }
 
@@ -105,12 +95,7 @@ template <class P, std::int32_t kM>
   }
 }
 
-// The output code of one portion output over n lanes, in one loop from the
-// register lanes to the code: out[i] = code(X) with X = AB, CD, AB + CD or
-// MUX(AB, CD). kAB, kCD: the products' kinds (above); ab and cd hold their terms.
-// kPerProduct: every product rounded to the register grid first
-// (CombinerRounding::PerProduct). code(X) = round((X + bias)·2·scale / 8M) half
-// away, clamped to [−M, M] (general_combiner.h's output_code).
+// A variable's mapped value at fragment i.
 template <class P>
 [[gnu::always_inline]] inline P mapped(const Src& s, int i) {
   // max then min (lo <= hi for every mapping): two instructions per eight lanes.
