@@ -492,6 +492,10 @@ class Context {
   pixel::RgbaImage<T> transfer(pixel::RgbaImage<T> img, pixel::ImageDims dims) const;
   template <class T>
   void emit_color_rect(const pixel::RgbaImage<T>& img);
+  // emit_color_rect's fragments of a width x height rectangle whose final codes
+  // are known (fixed profiles): row m's 4·width codes from row_codes(m, to).
+  template <class RowCodes>
+  void emit_color_code_rows(int width, int height, RowCodes row_codes);
   template <class T>
   bool tex_image(const char* fn, int dims, GLenum target, int level, GLenum internalformat, int width, int height,
                  int border, GLenum format, GLenum type, const void* data, const int* copy_xy);

@@ -13,6 +13,7 @@
 #include "pipeline/number/unorm.h"
 #include "pipeline/pixel_transfer/final_conversion.h"
 #include "pipeline/pixel_transfer/formats.h"
+#include "pipeline/pixel_transfer/transfer_plan.h"
 #include "pipeline/pixel_transfer/unpack.h"
 #include "sim/context.h"
 
@@ -125,6 +126,60 @@ void Context::emit_color_rect(const RgbaImage<T>& img) {
         }
       });
       if (span.count > 0) pixel_fragments(span);
+    }
+  }
+}
+
+// emit_color_rect's fragments for a fixed profile whose final codes are known
+// (CopyPixels' identity transfer), without the per-pixel vector growth: the
+// window row's fragments are counted once and laid out by index. The reference
+// (set_fast_paths(false)) keeps emit_color_rect; tests/sim/test_fast_copy_pixels.cpp
+// compares the two.
+template <class RowCodes>
+void Context::emit_color_code_rows(int width, int height, RowCodes row_codes_of) {
+  if (!raster_pos_.valid || width <= 0 || height <= 0) return;  // §3.6.4: invalid raster position -> nothing
+  const bool has_depth = fb_.has_depth();
+  const std::uint32_t z = has_depth ? pixel::pack_unsigned(raster_pos_.z, fb_.format().depth_bits) : 0;
+  // A group's columns depend on n only and its rows on m only (group_extent):
+  // the columns, clipped to the window, are computed once for every row, and so
+  // is the number of fragments of a window row.
+  std::vector<std::array<int, 2>> cols(static_cast<std::size_t>(width));
+  int row_fragments = 0;
+  for (int n = 0; n < width; ++n) {
+    int gx0, gx1, gy0, gy1;
+    group_extent(n, 0, gx0, gx1, gy0, gy1);
+    auto& c = cols[static_cast<std::size_t>(n)];
+    c = {std::max(gx0, 0), std::min(gx1, fb_.width())};  // pixel ownership
+    row_fragments += std::max(0, c[1] - c[0]);
+  }
+  if (row_fragments == 0) return;
+  FragmentSpan span;  // reused from row to row
+  std::vector<std::uint16_t> row_codes(4 * static_cast<std::size_t>(width));
+  span.count = row_fragments;
+  span.codes.resize(4 * static_cast<std::size_t>(row_fragments));
+  if (has_depth) span.depth.assign(static_cast<std::size_t>(row_fragments), z);
+  for (int m = 0; m < height; ++m) {
+    int x0, x1, y0, y1;
+    group_extent(0, m, x0, x1, y0, y1);
+    const int ya = std::max(y0, 0), yb = std::min(y1, fb_.height());
+    if (ya >= yb) continue;
+    row_codes_of(m, row_codes.data());  // once for every window row of the group
+    for (int y = ya; y < yb; ++y) {
+      // Laid out again for every window row, in increasing window x:
+      // pixel_fragments textures the span's colours in place.
+      std::size_t f = 0;
+      bool started = false;
+      for_columns(width, pixel_zoom_[0], [&](int n) {
+        const auto [xa, xe] = cols[static_cast<std::size_t>(n)];
+        if (xa >= xe) return;
+        if (!started) {
+          span.x0 = xa;
+          started = true;
+        }
+        for (int x = xa; x < xe; ++x, ++f) std::copy_n(row_codes.data() + 4 * static_cast<std::size_t>(n), 4, span.codes.data() + 4 * f);
+      });
+      span.y = y;
+      pixel_fragments(span);
     }
   }
 }
@@ -327,6 +382,32 @@ void Context::copy_pixels(int x, int y, int width, int height, GLenum type) {
     write_stencil_rect(0, 0, width, height, idx);
   } else if (type == gl::DEPTH) {
     write_depth_fragments(width, height, depth_transfer(read_depth_rect(fb_, x, y, width, height), pixel_transfer_));
+  } else if (fast_paths_ && profile_.is_fixed() && !fb_.format().float_color() &&
+             pixel::plan_transfer(transfer_inputs(), pixel::ImageDims::TwoD).empty()) {
+    // No transfer operation can change a value (the plan is empty): each
+    // component's final code is a function of its framebuffer code alone, the
+    // reference's read_color_rect then final_code, tabulated once for the 2^m
+    // codes. The whole source is read before any fragment is written (§4.3.3).
+    const int bits = fb_.format().color_bits;
+    const T maxc = static_cast<T>(fb_.color_max());
+    std::vector<std::uint16_t> code_of(static_cast<std::size_t>(fb_.color_max()) + 1);
+    for (std::size_t k = 0; k < code_of.size(); ++k) code_of[k] = pixel::final_code(static_cast<T>(k) / maxc, bits);
+    const std::uint16_t outside = pixel::final_code(T(0), bits);  // pixels outside the window read as 0
+    std::vector<std::uint16_t> codes(4 * static_cast<std::size_t>(width) * static_cast<std::size_t>(height), outside);
+    for (int j = 0; j < height; ++j) {
+      const int fy = y + j;
+      if (fy < 0 || fy >= fb_.height()) continue;
+      const int i0 = std::max(0, -x), i1 = std::min(width, fb_.width() - x);
+      for (int i = i0; i < i1; ++i) {
+        const std::uint16_t* src = fb_.codes().data() + 4 * fb_.index(x + i, fy);
+        std::uint16_t* dst = codes.data() + 4 * (static_cast<std::size_t>(j) * static_cast<std::size_t>(width) + static_cast<std::size_t>(i));
+        for (int c = 0; c < 4; ++c) dst[c] = code_of[src[c]];
+      }
+    }
+    emit_color_code_rows(width, height, [&](int m, std::uint16_t* to) {
+      std::copy_n(codes.data() + 4 * static_cast<std::size_t>(m) * static_cast<std::size_t>(width),
+                  4 * static_cast<std::size_t>(width), to);
+    });
   } else {
     emit_color_rect(transfer(read_color_rect<T>(x, y, width, height), pixel::ImageDims::TwoD));
   }

@@ -1,0 +1,56 @@
+// CopyPixels COLOR with an empty transfer plan (sim/context_pixel_rect.cpp): the
+// fast path tabulates each component's final code over the framebuffer codes
+// and lays the rows out without the float image. Against the reference path
+// (set_fast_paths(false): read_color_rect, transfer, emit_color_rect) on random
+// framebuffers, source rectangles partly outside the window (read as 0),
+// overlapping the destination, raster positions, pixel zooms (fractional,
+// negative), fragment operations, texturing of the copied fragments (which
+// rewrites a span's colours in place), and sometimes a transfer operation (both
+// paths then take the reference). Buffers must be identical.
+#include <doctest/doctest.h>
+
+#include "fast_scene.h"
+
+using namespace ffsim;
+using namespace ffsim::test;
+
+TEST_CASE("fast copy pixels: identity-transfer CopyPixels COLOR == the reference path, every profile") {
+#ifdef FFSIM_SANITIZE
+  constexpr int kCases = 15;
+#else
+  constexpr int kCases = 40;
+#endif
+  int copies = 0;
+  for (const char* profile : kFastProfiles) {
+    for (int k = 0; k < kCases; ++k) {
+      const auto seed = static_cast<std::uint32_t>(7000 + k);
+      Context fast(profile_named(profile), 37, 29), slow(profile_named(profile), 37, 29);
+      slow.set_fast_paths(false);
+      SceneOptions opt;
+      opt.copy_pixels = false;
+      for (Context* c : {&fast, &slow}) {
+        draw_random_scene(*c, seed, opt);
+        SceneRng r(seed + 1);
+        for (int copy = 0; copy < 3; ++copy) {
+          for (int u = 0; u < 2; ++u) random_texture_or_off(*c, r, u, static_cast<std::uint32_t>(10 + u), 30);
+          c->disable(gl::REGISTER_COMBINERS_NV);
+          random_fragment_ops(*c, r);
+          static const double kZoom[] = {1, 1, 1, 2, 0.5, 1.5, -1, -2, 3};
+          c->pixelZoom(r.pick(kZoom), r.pick(kZoom));
+          c->pixelTransferf(gl::RED_SCALE, r.b(20) ? 0.5 : 1.0);  // 0.5: a transfer stage (both take the reference)
+          c->matrixMode(gl::PROJECTION);
+          c->loadIdentity();
+          c->ortho(0, 37, 0, 29, -1, 1);
+          c->matrixMode(gl::MODELVIEW);
+          c->loadIdentity();
+          c->rasterPos2(r.d(-3, 36), r.d(-3, 28));  // outside the window: an invalid raster position, nothing drawn
+          c->copyPixels(r.i(-10, 30), r.i(-10, 25), r.i(0, 50), r.i(0, 40), gl::COLOR);
+        }
+      }
+      INFO("profile ", profile, " seed ", seed);
+      REQUIRE(buffer_hashes(fast) == buffer_hashes(slow));
+      copies += 3;
+    }
+  }
+  CHECK(copies == 3 * kCases * 5);
+}
