@@ -81,7 +81,7 @@ void interpolate_colors(const std::array<const WindowVertex*, 3>& tv, bool secon
 //    |dwdx_k| <= 2W), and V_0 + i·D computed in binary64 is exact for the same
 //    reason (|i·Σ dwdx_j·m_j| and |Σ w_j·m_j| are within the bound). An exact zero
 //    is +0 both ways (the reference starts from 0 + ·; V_0 is the reference's
-//    value, and x + (−x) = +0). `Progression` checks the bound per run.
+//    value, and x + (−x) = +0). `DyadicCoords::exact_for` checks the bound per run.
 using Coords = std::array<double, 3>;  // s/w, t/w, q/w at a vertex
 
 // Coordinate j (s or t) of a triangle's three vertices as m_k·2^e (e the exponent
