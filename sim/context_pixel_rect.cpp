@@ -394,12 +394,14 @@ void Context::copy_pixels(int x, int y, int width, int height, GLenum type) {
     for (std::size_t k = 0; k < code_of.size(); ++k) code_of[k] = pixel::final_code(static_cast<T>(k) / maxc, bits);
     const std::uint16_t outside = pixel::final_code(T(0), bits);  // pixels outside the window read as 0
     std::vector<std::uint16_t> codes(4 * static_cast<std::size_t>(width) * static_cast<std::size_t>(height), outside);
+    // (In 64 bits: x and y may be any int.)
+    const auto i0 = static_cast<int>(std::clamp<std::int64_t>(-std::int64_t{x}, 0, width));
+    const auto i1 = static_cast<int>(std::clamp<std::int64_t>(std::int64_t{fb_.width()} - x, i0, width));
     for (int j = 0; j < height; ++j) {
-      const int fy = y + j;
+      const std::int64_t fy = std::int64_t{y} + j;
       if (fy < 0 || fy >= fb_.height()) continue;
-      const int i0 = std::max(0, -x), i1 = std::min(width, fb_.width() - x);
       for (int i = i0; i < i1; ++i) {
-        const std::uint16_t* src = fb_.codes().data() + 4 * fb_.index(x + i, fy);
+        const std::uint16_t* src = fb_.codes().data() + 4 * fb_.index(x + i, static_cast<int>(fy));
         std::uint16_t* dst = codes.data() + 4 * (static_cast<std::size_t>(j) * static_cast<std::size_t>(width) + static_cast<std::size_t>(i));
         for (int c = 0; c < 4; ++c) dst[c] = code_of[src[c]];
       }

@@ -54,3 +54,21 @@ TEST_CASE("fast copy pixels: identity-transfer CopyPixels COLOR == the reference
   }
   CHECK(copies == 3 * kCases * 5);
 }
+
+TEST_CASE("fast copy pixels: a source rectangle anywhere in int range reads as outside the window, without overflow") {
+  // x or y near INT_MIN / INT_MAX: the whole source is outside and reads as 0,
+  // as a rectangle just beside the window does.
+  const int kFar[][2] = {{-2147483647 - 1, 3}, {2147483647 - 5, 3}, {3, -2147483647 - 1}, {3, 2147483647 - 5}};
+  for (const auto& far : kFar) {
+    Context a(profile_named("geforce256"), 16, 16), b(profile_named("geforce256"), 16, 16);
+    for (Context* c : {&a, &b}) {
+      c->clearColor(0.25, 0.5, 0.75, 1);
+      c->clear(gl::COLOR_BUFFER_BIT);
+      c->rasterPos2(0, 0);
+    }
+    a.copyPixels(far[0], far[1], 6, 6, gl::COLOR);
+    b.copyPixels(-100, -100, 6, 6, gl::COLOR);
+    CHECK(a.getError() == gl::NO_ERROR);
+    CHECK(buffer_hashes(a) == buffer_hashes(b));
+  }
+}
