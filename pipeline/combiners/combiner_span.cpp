@@ -61,20 +61,18 @@ struct Term {
 // when every term is folded.
 constexpr int kFolded = 8;
 
-// div_round_half_away (snorm.h) in P, and its magnitude min(|q|, M) with the
-// sign applied (the output code's clamp to [−M, M]): the division is unsigned
-// (the numerator is non-negative), which vectorises in fewer instructions.
+// div_round_half_away (snorm.h) in P: the division is unsigned (the numerator
+// is non-negative), which vectorises in fewer instructions.
 template <class P>
 [[gnu::always_inline]] inline P round_away(P num, P den) {
   using U = std::make_unsigned_t<P>;
   const P q = static_cast<P>(static_cast<U>(2 * (num < 0 ? -num : num) + den) / static_cast<U>(2 * den));
   return num < 0 ? -q : q;
 }
+// ... clamped to [−max, max] (the output code's clamp).
 template <class P>
 [[gnu::always_inline]] inline P round_away_clamped(P num, P den, P max) {
-  using U = std::make_unsigned_t<P>;
-  const P q = std::min(static_cast<P>(static_cast<U>(2 * (num < 0 ? -num : num) + den) / static_cast<U>(2 * den)), max);
-  return num < 0 ? -q : q;
+  return std::clamp(round_away(num, den), -max, max);
 }
 
 // The output code's rounding, round_away_clamped(num, 8M, M), for a

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <functional>
 
 #include "fast_scene.h"
 #include "pipeline/raster/triangle.h"
@@ -207,15 +208,21 @@ TEST_CASE("fast draw: vertices shared by a glEnd's polygons (window form once), 
     }
 }
 
-TEST_CASE("fast draw: triangles of power-of-two area (divisions by A as multiplications), span == per-fragment") {
-  // Right triangles with legs of 2^a and 2^b pixels at integer corners: twice the
-  // area in grid units is 2^(a + b + 2S), the case where the span path multiplies
-  // by 1/A instead of dividing. Affine (q = 1) and projective texture coordinates.
+namespace {
+
+// Right triangles with legs of 2^a and 2^b pixels (a, b <= max_log_leg) at integer
+// corners in [0, max_corner] of a 64x64 window, two random textures, (ONE, ONE)
+// blending, drawn both ways in geforce256 and rgba12 for kCases seeds from
+// seed0; `texcoord(c, unit, rv, projective)` gives each vertex's coordinates
+// (projective: drawn per triangle with projective_percent % chance, 0: never
+// drawn). Returns the span-path runs taken.
+std::uint64_t compare_pow2_triangles(std::uint32_t seed0, std::uint32_t vertex_seed_offset, int triangles,
+                                     int max_corner, int max_log_leg, int projective_percent,
+                                     const std::function<void(Context&, GLenum, SceneRng&, bool)>& texcoord) {
   std::uint64_t fast_runs = 0;
   for (const char* profile : {"geforce256", "rgba12"}) {
-    for (std::uint32_t seed = 300; seed < 300 + kCases; ++seed) {
+    for (std::uint32_t seed = seed0; seed < seed0 + kCases; ++seed) {
       Pair p(profile, 64, 64);
-      SceneRng r(seed);
       for (Context* c : {&p.fast, &p.slow}) {
         SceneRng rc(seed);
         for (int u = 0; u < 2; ++u) random_texture(*c, rc, u, static_cast<std::uint32_t>(1 + u));
@@ -227,15 +234,15 @@ TEST_CASE("fast draw: triangles of power-of-two area (divisions by A as multipli
         c->enable(gl::BLEND);
         c->blendFunc(gl::ONE, gl::ONE);
         c->begin(gl::TRIANGLES);
-        SceneRng rv(seed + 7);
-        for (int k = 0; k < 6; ++k) {
-          const int x = rv.i(0, 40), y = rv.i(0, 40), a = 1 << rv.i(0, 4), b = 1 << rv.i(0, 4);
-          const bool flip = rv.b(50), projective = rv.b(40);
+        SceneRng rv(seed + vertex_seed_offset);
+        for (int k = 0; k < triangles; ++k) {
+          const int x = rv.i(0, max_corner), y = rv.i(0, max_corner);
+          const int a = 1 << rv.i(0, max_log_leg), b = 1 << rv.i(0, max_log_leg);
+          const bool flip = rv.b(50), projective = projective_percent > 0 && rv.b(projective_percent);
           const int px[3] = {x, x + a, x}, py[3] = {y, y, y + b};
           for (int v = 0; v < 3; ++v) {
             const int i = flip ? 2 - v : v;
-            for (GLenum u = 0; u < 2; ++u)
-              c->multiTexCoord4(gl::TEXTURE0 + u, rv.d(-2, 2), rv.d(-2, 2), 0, projective ? rv.d(0.5, 2) : 1.0);
+            for (GLenum u = 0; u < 2; ++u) texcoord(*c, gl::TEXTURE0 + u, rv, projective);
             c->color4(rv.d(0, 1), rv.d(0, 1), rv.d(0, 1), rv.d(0, 1));
             c->vertex3(px[i], py[i], rv.d(-0.9, 0.9));
           }
@@ -247,6 +254,19 @@ TEST_CASE("fast draw: triangles of power-of-two area (divisions by A as multipli
       fast_runs += p.fast.fast_runs();  // (textures whose result depends on λ take the reference path)
     }
   }
+  return fast_runs;
+}
+
+}  // namespace
+
+TEST_CASE("fast draw: triangles of power-of-two area (divisions by A as multiplications), span == per-fragment") {
+  // Right triangles with legs of 2^a and 2^b pixels at integer corners: twice the
+  // area in grid units is 2^(a + b + 2S), the case where the span path multiplies
+  // by 1/A instead of dividing. Affine (q = 1) and projective texture coordinates.
+  const std::uint64_t fast_runs =
+      compare_pow2_triangles(300, 7, 6, 40, 4, 40, [](Context& c, GLenum unit, SceneRng& rv, bool projective) {
+        c.multiTexCoord4(unit, rv.d(-2, 2), rv.d(-2, 2), 0, projective ? rv.d(0.5, 2) : 1.0);
+      });
   CHECK(fast_runs > 500);
 }
 
@@ -258,46 +278,16 @@ TEST_CASE("fast draw: dyadic texture coordinates on power-of-two areas (the exac
   // otherwise. The multiples range from a few bits (texel-aligned quads) to 50
   // bits (over the bound), with exponents from 2^-40 to 2^20, zeros and
   // negatives, so both sides of the bound and exact cancellations to +0 occur.
-  std::uint64_t fast_runs = 0;
-  for (const char* profile : {"geforce256", "rgba12"}) {
-    for (std::uint32_t seed = 500; seed < 500 + kCases; ++seed) {
-      Pair p(profile, 64, 64);
-      for (Context* c : {&p.fast, &p.slow}) {
-        SceneRng rc(seed);
-        for (int u = 0; u < 2; ++u) random_texture(*c, rc, u, static_cast<std::uint32_t>(1 + u));
-        c->matrixMode(gl::PROJECTION);
-        c->loadIdentity();
-        c->ortho(0, 64, 0, 64, -1, 1);
-        c->matrixMode(gl::MODELVIEW);
-        c->loadIdentity();
-        c->enable(gl::BLEND);
-        c->blendFunc(gl::ONE, gl::ONE);
-        c->begin(gl::TRIANGLES);
-        SceneRng rv(seed + 11);
-        auto dyadic = [&] {
-          if (rv.b(10)) return 0.0;
-          const int bits = rv.b(70) ? rv.i(1, 12) : rv.b(50) ? rv.i(13, 30) : rv.i(31, 50);
-          const double m = std::floor(rv.d(-1, 1) * std::ldexp(1.0, bits));
-          return std::ldexp(m, -rv.i(0, 40) + (rv.b(10) ? 60 : 0));
-        };
-        for (int k = 0; k < 8; ++k) {
-          const int x = rv.i(0, 30), y = rv.i(0, 30), a = 1 << rv.i(0, 5), b = 1 << rv.i(0, 5);
-          const bool flip = rv.b(50);
-          const int px[3] = {x, x + a, x}, py[3] = {y, y, y + b};
-          for (int v = 0; v < 3; ++v) {
-            const int i = flip ? 2 - v : v;
-            for (GLenum u = 0; u < 2; ++u) c->multiTexCoord4(gl::TEXTURE0 + u, dyadic(), dyadic(), 0, 1.0);
-            c->color4(rv.d(0, 1), rv.d(0, 1), rv.d(0, 1), rv.d(0, 1));
-            c->vertex3(px[i], py[i], rv.d(-0.9, 0.9));
-          }
-        }
-        c->end();
-      }
-      INFO("profile ", std::string(profile), " seed ", seed);
-      REQUIRE(buffer_hashes(p.fast) == buffer_hashes(p.slow));
-      fast_runs += p.fast.fast_runs();
-    }
-  }
+  auto dyadic = [](SceneRng& rv) {
+    if (rv.b(10)) return 0.0;
+    const int bits = rv.b(70) ? rv.i(1, 12) : rv.b(50) ? rv.i(13, 30) : rv.i(31, 50);
+    const double m = std::floor(rv.d(-1, 1) * std::ldexp(1.0, bits));
+    return std::ldexp(m, -rv.i(0, 40) + (rv.b(10) ? 60 : 0));
+  };
+  const std::uint64_t fast_runs =
+      compare_pow2_triangles(500, 11, 8, 30, 5, 0, [&](Context& c, GLenum unit, SceneRng& rv, bool) {
+        c.multiTexCoord4(unit, dyadic(rv), dyadic(rv), 0, 1.0);
+      });
   CHECK(fast_runs > 500);
 }
 
