@@ -6,6 +6,25 @@
 
 namespace ffsim {
 
+namespace {
+
+// dst[i] = pattern[i mod 4] where mask[i mod 4], for the n components of one row
+// of pixels (n a multiple of 4). The pattern is copied first: it may lie in dst.
+template <class T>
+void copy_masked(const T* pattern, const std::array<bool, 4>& mask, T* dst, std::size_t n) {
+  const std::array<T, 4> p{pattern[0], pattern[1], pattern[2], pattern[3]};
+  if (mask[0] && mask[1] && mask[2] && mask[3]) {
+    for (std::size_t i = 0; i < n; i += 4)
+      for (std::size_t c = 0; c < 4; ++c) dst[i + c] = p[c];
+    return;
+  }
+  for (std::size_t i = 0; i < n; i += 4)
+    for (std::size_t c = 0; c < 4; ++c)
+      if (mask[c]) dst[i + c] = p[c];
+}
+
+}  // namespace
+
 FramebufferFormat FramebufferFormat::from_profile(const Profile& p, int width, int height) {
   FramebufferFormat f;
   f.width = width;
@@ -71,34 +90,31 @@ void Framebuffer::clear_color(const Rect& r0, const std::array<double, 4>& rgba,
   for (int c = 0; c < 4; ++c)
     if (mask[c]) store_color_value(x0, y0, c, rgba[c]);
   const std::size_t first = 4 * index(x0, y0);
-  for (int y = r.y; y < r.y + r.height; ++y)
-    for (int x = r.x; x < r.x + r.width; ++x) {
-      const std::size_t i = 4 * index(x, y);
-      for (std::size_t c = 0; c < 4; ++c) {
-        if (!mask[c]) continue;
-        if (fmt_.float_color()) values_[i + c] = values_[first + c];
-        else codes_[i + c] = codes_[first + c];
-      }
-    }
+  // Row by row: a row of the rectangle is contiguous, 4 components per pixel.
+  const std::size_t row = 4 * static_cast<std::size_t>(r.width);
+  for (int y = r.y; y < r.y + r.height; ++y) {
+    const std::size_t i0 = 4 * index(x0, y);
+    if (fmt_.float_color()) copy_masked(values_.data() + first, mask, values_.data() + i0, row);
+    else copy_masked(codes_.data() + first, mask, codes_.data() + i0, row);
+  }
 }
 
 void Framebuffer::clear_stencil(const Rect& r0, std::uint32_t value, std::uint32_t writemask) {
   if (!has_stencil()) return;
   const Rect r = intersect(r0, bounds());
   const std::uint32_t m = writemask & stencil_max();
-  for (int y = r.y; y < r.y + r.height; ++y)
-    for (int x = r.x; x < r.x + r.width; ++x) {
-      std::uint8_t& s = stencil_[index(x, y)];
-      s = static_cast<std::uint8_t>((s & ~m) | (value & m));  // §4.2.2: writes through StencilMask
-    }
+  for (int y = r.y; y < r.y + r.height; ++y) {
+    std::uint8_t* s = stencil_.data() + index(r.x, y);
+    for (int x = 0; x < r.width; ++x)
+      s[x] = static_cast<std::uint8_t>((s[x] & ~m) | (value & m));  // §4.2.2: writes through StencilMask
+  }
 }
 
 void Framebuffer::clear_depth(const Rect& r0, double depth01) {
   if (!has_depth()) return;
   const Rect r = intersect(r0, bounds());
   const std::uint32_t code = unorm_from_double(std::clamp(depth01, 0.0, 1.0), fmt_.depth_bits);
-  for (int y = r.y; y < r.y + r.height; ++y)
-    for (int x = r.x; x < r.x + r.width; ++x) depth_[index(x, y)] = code;
+  for (int y = r.y; y < r.y + r.height; ++y) std::fill_n(depth_.data() + index(r.x, y), r.width, code);
 }
 
 }  // namespace ffsim

@@ -1,5 +1,8 @@
 #include <doctest/doctest.h>
 
+#include <array>
+#include <random>
+
 #include "pipeline/number/unorm.h"
 #include "sim/context.h"
 #include "sim/framebuffer.h"
@@ -74,6 +77,66 @@ TEST_CASE("context: glClear honours clear values, color mask, stencil mask, scis
       CHECK(fb.stencil()[i] == (inside ? 0xF0 : 0xFF));     // only the low 4 bits written
     }
   CHECK(ctx.getError() == gl::NO_ERROR);
+}
+
+// The clears fill rectangles row by row; this checks them pixel by pixel against
+// the rule of §4.2.3 (every pixel of the rectangle clipped to the window takes the
+// clear value through the masks, §4.2.2; nothing else changes), over random
+// rectangles (partly or wholly outside), masks and colour formats.
+TEST_CASE("framebuffer: clears change exactly the masked components of the clipped rectangle") {
+  std::mt19937 rng(20261124);
+  auto pick = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+  for (int round = 0; round < 300; ++round) {
+    FramebufferFormat f;
+    f.width = pick(1, 23);
+    f.height = pick(1, 9);
+    f.color_arith = std::array{Arithmetic::Fixed, Arithmetic::Float32, Arithmetic::Float64}[pick(0, 2)];
+    f.color_bits = pick(1, 12);
+    f.stencil_bits = pick(0, 8);
+    f.depth_bits = std::array{0, 16, 24}[pick(0, 2)];
+    Framebuffer fb(f);
+    // Distinct starting contents, so an unchanged pixel is seen as one.
+    for (std::size_t i = 0; i < fb.codes().size(); ++i)
+      fb.codes()[i] = static_cast<std::uint16_t>(i % (fb.color_max() + 1));
+    for (std::size_t i = 0; i < fb.values().size(); ++i) fb.values()[i] = static_cast<double>(i % 7) / 8;
+    for (std::size_t i = 0; i < fb.stencil().size(); ++i)
+      fb.stencil()[i] = static_cast<std::uint8_t>(i % (fb.stencil_max() + 1));
+    for (std::size_t i = 0; i < fb.depth().size(); ++i) fb.depth()[i] = static_cast<std::uint32_t>(i);
+    const Framebuffer before = fb;
+    const Rect r{pick(-30, 30), pick(-12, 12), pick(0, 40), pick(0, 20)};
+    const std::array<bool, 4> mask{pick(0, 1) == 1, pick(0, 1) == 1, pick(0, 1) == 1, pick(0, 1) == 1};
+    const std::array<double, 4> rgba{pick(0, 8) / 8.0, pick(0, 8) / 8.0, 0.3, 1.0};
+    const auto stencil_value = static_cast<std::uint32_t>(pick(0, 1023));
+    const auto stencil_mask = static_cast<std::uint32_t>(pick(0, 255));
+    const double depth = pick(0, 4) / 4.0;
+    CAPTURE(round);
+    fb.clear_color(r, rgba, mask);
+    fb.clear_stencil(r, stencil_value, stencil_mask);
+    fb.clear_depth(r, depth);
+    // The cleared values, as a one-pixel buffer stores them.
+    FramebufferFormat one = f;
+    one.width = one.height = 1;
+    Framebuffer ref(one);
+    for (int c = 0; c < 4; ++c) ref.store_color_value(0, 0, c, rgba[c]);
+    const std::uint32_t sm = stencil_mask & fb.stencil_max();
+    for (int y = 0; y < f.height; ++y)
+      for (int x = 0; x < f.width; ++x) {
+        const bool inside = x >= r.x && x < r.x + r.width && y >= r.y && y < r.y + r.height;
+        const std::size_t i = fb.index(x, y);
+        for (int c = 0; c < 4; ++c) {
+          const std::size_t k = 4 * i + static_cast<std::size_t>(c);
+          const bool cleared = inside && mask[static_cast<std::size_t>(c)];
+          if (f.float_color())
+            CHECK(fb.values()[k] == (cleared ? ref.values()[static_cast<std::size_t>(c)] : before.values()[k]));
+          else
+            CHECK(fb.codes()[k] == (cleared ? ref.codes()[static_cast<std::size_t>(c)] : before.codes()[k]));
+        }
+        if (fb.has_stencil())
+          CHECK(fb.stencil()[i] == (inside ? (before.stencil()[i] & ~sm) | (stencil_value & sm) : before.stencil()[i]));
+        if (fb.has_depth())
+          CHECK(fb.depth()[i] == (inside ? unorm_from_double(depth, f.depth_bits) : before.depth()[i]));
+      }
+  }
 }
 
 TEST_CASE("context: GL errors are latched once, logged with the call site, state unchanged") {
