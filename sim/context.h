@@ -36,6 +36,7 @@
 #include "sim/framebuffer.h"
 #include "sim/gl_error.h"
 #include "sim/probe.h"
+#include "sim/raster_cache.h"
 #include "sim/upload_cache.h"
 
 namespace ffsim {
@@ -421,6 +422,15 @@ class Context {
   // generic per-fragment path. Results are identical either way; the
   // tests/*/test_fast_*.cpp tests draw random scenes both ways and compare.
   void set_fast_paths(bool on) { fast_paths_ = on; }
+  // The raster cache (sim/raster_cache.h, docs/performance.md 13.1): a glEnd's
+  // triangles drawn again at the same window positions and depths replay the
+  // runs, groups and depth codes of the first time instead of rasterizing again
+  // (span path only; on by default). Off: every draw is rasterized.
+  void set_raster_cache(bool on) {
+    raster_cache_on_ = on;
+    if (!on) raster_cache_.clear();
+  }
+  const RasterCache& raster_cache() const { return raster_cache_; }
   bool fast_paths() const { return fast_paths_; }
   // glTexImage1D/2D of client data through the upload cache (sim/upload_cache.h;
   // with the fast paths only: off, every upload is computed).
@@ -586,6 +596,29 @@ class Context {
   void batch_triangle(std::size_t a, std::size_t b, std::size_t c, const DrawSetup& ds);
   void flush_batch(const DrawSetup& ds);
   void clear_batch();
+  // Triangles in drawing order, as raster_triangle takes them.
+  using TriangleRef = std::array<const WindowVertex*, 3>;
+  // The triangles' rows [ds.cy0, ds.cy1) on this thread through the raster cache
+  // (sim/draw_replay.cpp): replayed when the cache holds them, else rasterized
+  // (and recorded when the cache applies); the last group is shaded.
+  void draw_sequence(const DrawSetup& ds, const std::vector<TriangleRef>& tris, FragmentSpan& span);
+  // Whether the raster cache applies to a draw: the span path with direct writes
+  // (or a worker) for every triangle of it.
+  bool raster_cache_applies(const DrawSetup& ds) const;
+  // What a recording depends on (sim/raster_cache.h): the draw's window and rows
+  // (`rows`), then per triangle its snapped positions, depth codes and
+  // coords_reuse_mask.
+  std::vector<std::int64_t> raster_key(const DrawSetup& ds, const TriangleRef* tris, std::size_t count,
+                                       std::initializer_list<std::int64_t> rows) const;
+  // Rasterize `tris` (rows [y0, y1)) into `rec`, or replay `rec`; both end with
+  // the last group shaded.
+  void record_sequence(const DrawSetup& ds, const std::vector<TriangleRef>& tris, int y0, int y1, FragmentSpan& span,
+                       int band, RasterRecording& rec);
+  void replay_sequence(const DrawSetup& ds, const std::vector<TriangleRef>& tris, const RasterRecording& rec,
+                       FragmentSpan& span, int band);
+  // A run of kLongRun fragments or more, shaded and written on its own.
+  void shade_long_run(const DrawSetup& ds, const TriangleRef& tv, const TriangleCoverage& cov, int y, int x0, int n,
+                      const std::array<std::int64_t, 3>& first, FragmentSpan& span, int band);
 
 
   // ==== [issue 4b] state ====
@@ -625,6 +658,9 @@ class Context {
   // ==== [issue 10] state ====
   bool fast_paths_ = true;
   UploadCache upload_cache_;
+  bool raster_cache_on_ = true;
+  RasterCache raster_cache_;
+  std::vector<TriangleRef> sequence_scratch_;  // a glEnd's triangles (one thread)
   std::uint64_t fast_runs_ = 0, split_batches_ = 0, split_triangles_ = 0, shared_vertex_draws_ = 0;
   // Scratch of the span path, reused from run to run (sim/draw_span.cpp).
   struct SpanScratch {
@@ -649,6 +685,14 @@ class Context {
     std::size_t taken_words = 0;
     bool marked = false;
     std::uint64_t joined = 0, met = 0;  // span_group_stats
+    // The raster cache: the recording being made (null: none), the index in the
+    // sequence of the triangle being rasterized, and that index for each of
+    // `triangles`; depth_ready: `depth` holds the group's codes (a replay).
+    RasterRecording* recording = nullptr;
+    int sequence_index = 0;
+    std::vector<int> triangle_index;
+    bool depth_ready = false;
+    std::vector<TriangleRef> sequence;  // a band's triangles (flush_batch)
   };
   SpanScratch span_scratch_;
   // glEnd's polygons (clip coordinates, then window vertices) in buffers reused
@@ -670,6 +714,9 @@ class Context {
   // least kSplitFragments pixels is split into bands of rows.
   static constexpr std::int64_t kSplitFragments = 4096;
   static constexpr std::size_t kBatchTriangles = 2048;  // bounds the batch's memory
+  // The span path shades a run of this many fragments or more on its own, not in
+  // a group (sim/draw.cpp raster_triangle).
+  static constexpr int kLongRun = 64;
   std::shared_ptr<WorkerPool> pool_;
   std::vector<SpanScratch> band_scratch_;
   std::vector<FragmentSpan> band_spans_;
@@ -703,6 +750,8 @@ class Context {
   SpanScratch& scratch_of(int band) { return band < 0 ? span_scratch_ : band_scratch_[static_cast<std::size_t>(band)]; }
   void shade_group(const DrawSetup& ds, FragmentSpan& span, int band);
   void clear_group(SpanScratch& sc);
+  // The group in `sc` appended to sc.recording (its depth codes follow once shaded).
+  static RecordedGroup* record_group(SpanScratch& sc);
   void write_span(const DrawSetup& ds, FragmentSpan& span, int band);
   void count_written(int band, std::uint64_t fragments, std::uint64_t fast_runs);
 

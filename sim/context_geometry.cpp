@@ -84,6 +84,7 @@ void Context::end() {
   for (std::size_t i = 0; i < n && shared; ++i) shared = inside_view_volume(v[i].position);
   std::size_t shared_base = 0;
   FragmentSpan shared_span;
+  sequence_scratch_.clear();
   if (shared) {
     ++shared_vertex_draws_;
     std::vector<WindowVertex>& wv = ds.bands ? batch_vertices_ : window_scratch_;
@@ -97,9 +98,9 @@ void Context::end() {
     for (std::size_t j = 1; j + 1 < count; ++j) {
       if (ds.bands) {
         batch_triangle(shared_base + at(0), shared_base + at(j), shared_base + at(j + 1), ds);
-      } else {
+      } else {  // drawn after the glEnd's last polygon (draw_sequence)
         const std::vector<WindowVertex>& wv = window_scratch_;
-        raster_triangle(ds, {&wv[at(0)], &wv[at(j)], &wv[at(j + 1)]}, ds.cy0, ds.cy1, shared_span, -1);
+        sequence_scratch_.push_back({&wv[at(0)], &wv[at(j)], &wv[at(j + 1)]});
       }
     }
   };
@@ -146,7 +147,7 @@ void Context::end() {
       break;
     default: break;
   }
-  if (shared && !ds.bands) shade_group(ds, shared_span, -1);  // the span path's last group of the glEnd
+  if (shared && !ds.bands) draw_sequence(ds, sequence_scratch_, shared_span);  // through the raster cache
   // Shared vertices: the batch is flushed when full only here, after the glEnd's
   // triangles (they index this glEnd's vertices, which a flush would clear).
   if (shared && ds.bands && batch_triangles_.size() >= kBatchTriangles) flush_batch(ds);

@@ -339,6 +339,8 @@ void Context::clear_group(SpanScratch& sc) {
       if (rb.hi) sc.taken[rb.word + 1] &= ~rb.hi;
     }
   sc.marked = false;
+  sc.depth_ready = false;
+  sc.triangle_index.clear();
   sc.group_fragments = 0;
   sc.weight.clear();
   sc.run_y.clear();
@@ -357,6 +359,7 @@ void Context::shade_group(const DrawSetup& ds, FragmentSpan& span, int band) {
   } emptied{*this, sc};
   const FastRuns runs{sc.weight.data(), sc.run_length.data(), static_cast<int>(sc.run_length.size()), sc.group_fragments};
   const bool has_depth = ds.has_depth;
+  RecordedGroup* recorded = sc.recording ? record_group(sc) : nullptr;
   sc.codes.resize(4 * static_cast<std::size_t>(runs.count));
   if (has_depth) sc.depth.resize(static_cast<std::size_t>(runs.count));
   for (int r = 0; r < runs.runs; ++r)
@@ -364,6 +367,7 @@ void Context::shade_group(const DrawSetup& ds, FragmentSpan& span, int band) {
                  sc.run_x0[static_cast<std::size_t>(r)], runs.length[r]);
   shade_runs_fast(*ds.st, *ds.plan, sc.triangles.data(), static_cast<int>(sc.triangles.size()), runs, ds.flat, ds.shade,
                   sc.codes.data(), has_depth ? sc.depth.data() : nullptr, sc);
+  if (recorded && has_depth) recorded->depth = sc.depth;
   // The fragment operations for the whole group in one call when every run
   // lies inside the write rectangle (window and scissor) and the colour is
   // codes: the group's fragments are distinct pixels (a triangle's are; a run
@@ -407,6 +411,22 @@ void Context::shade_group(const DrawSetup& ds, FragmentSpan& span, int band) {
   }
 }
 
+void Context::shade_long_run(const DrawSetup& ds, const TriangleRef& tv, const TriangleCoverage& cov, int y, int x0,
+                             int n, const std::array<std::int64_t, 3>& first, FragmentSpan& span, int band) {
+  span.y = y;
+  span.x0 = x0;
+  span.count = n;
+  prefetch_run(ds.buffers, fb_.width(), fb_.height(), y, x0, n);
+  span.codes.resize(4 * static_cast<std::size_t>(n));
+  if (ds.has_depth) span.depth.resize(static_cast<std::size_t>(n));
+  const FastRuns one{&first, &n, 1, n};
+  const GroupTriangle g{tv, cov, 0, 0};
+  shade_runs_fast(*ds.st, *ds.plan, &g, 1, one, ds.flat, ds.shade, span.codes.data(),
+                  ds.has_depth ? span.depth.data() : nullptr, scratch_of(band));
+  count_written(band, 0, 1);
+  write_span(ds, span, band);
+}
+
 void Context::raster_triangle(const DrawSetup& ds, const std::array<const WindowVertex*, 3>& tv, int y0, int y1,
                               FragmentSpan& span, int band) {
   const ShadingState& st = *ds.st;
@@ -431,7 +451,7 @@ void Context::raster_triangle(const DrawSetup& ds, const std::array<const Window
     // A run of kLongRun fragments or more is shaded on its own, in place.
     // Without the bits (a window over kTakenWords words), a group ends with its
     // triangle.
-    constexpr int kGroupFragments = 1024, kLongRun = 64;
+    constexpr int kGroupFragments = 1024;
     constexpr std::size_t kTakenWords = std::size_t{1} << 17;  // 1 MiB: windows up to 8 Mpixels
     const std::size_t words = (static_cast<std::size_t>(fb_.width()) + 63) / 64;
     const bool across = words * static_cast<std::size_t>(fb_.height()) <= kTakenWords;
@@ -446,17 +466,11 @@ void Context::raster_triangle(const DrawSetup& ds, const std::array<const Window
       if (n >= kLongRun) {  // a long run pays its per-call costs alone: shaded in place, not copied
         shade_group(ds, span, band);
         opened = false;
-        span.y = y;
-        span.x0 = x0;
-        span.count = n;
-        prefetch_run(ds.buffers, fb_.width(), fb_.height(), y, x0, n);
-        span.codes.resize(4 * static_cast<std::size_t>(n));
-        if (has_depth) span.depth.resize(static_cast<std::size_t>(n));
-        const FastRuns one{run.weight.data(), &n, 1, n};
-        const GroupTriangle g{tv, cov, 0, 0};
-        shade_runs_fast(st, plan, &g, 1, one, flat, shade, span.codes.data(), has_depth ? span.depth.data() : nullptr, sc);
-        count_written(band, 0, 1);
-        write();
+        if (sc.recording) {
+          sc.recording->steps.push_back({true, sc.recording->long_runs.size()});
+          sc.recording->long_runs.push_back({sc.sequence_index, cov, y, x0, n, run.weight[0]});
+        }
+        shade_long_run(ds, tv, cov, y, x0, n, run.weight[0], span, band);
         return;
       }
       RowBits rb{};
@@ -474,6 +488,7 @@ void Context::raster_triangle(const DrawSetup& ds, const std::array<const Window
         sc.coords_reuse = reuse;
         if (!sc.triangles.empty()) ++sc.joined;
         sc.triangles.push_back({tv, cov, static_cast<int>(sc.run_length.size()), sc.group_fragments});
+        if (sc.recording) sc.triangle_index.push_back(sc.sequence_index);
         opened = true;
       }
       if (across) {
@@ -661,8 +676,9 @@ void Context::flush_batch(const DrawSetup& ds) {
   const int bands = std::min(4 * threads_, rows);
   if (batch_area_ < kSplitFragments || bands < 2) {  // not worth the pool: in order on this thread
     FragmentSpan span;
-    for (const BatchTriangle& t : batch_triangles_) raster_triangle(ds, tri(t), ds.cy0, ds.cy1, span, -1);
-    shade_group(ds, span, -1);
+    sequence_scratch_.clear();
+    for (const BatchTriangle& t : batch_triangles_) sequence_scratch_.push_back(tri(t));
+    draw_sequence(ds, sequence_scratch_, span);
     return;
   }
   if (band_scratch_.size() < static_cast<std::size_t>(bands)) {
@@ -674,14 +690,37 @@ void Context::flush_batch(const DrawSetup& ds) {
   ++split_batches_;
   split_triangles_ += batch_triangles_.size();
   const int r0 = batch_r0_;
+  // The raster cache (sim/draw_replay.cpp): the batch's triangles and its bands
+  // are the key; each band replays, or records into, its own recording.
+  const bool cache = raster_cache_applies(ds);
+  std::vector<std::int64_t> key;
+  const std::vector<RasterRecording>* replay = nullptr;
+  std::vector<RasterRecording> recorded;
+  if (cache) {
+    sequence_scratch_.clear();
+    for (const BatchTriangle& t : batch_triangles_) sequence_scratch_.push_back(tri(t));
+    key = raster_key(ds, sequence_scratch_.data(), sequence_scratch_.size(), {r0, rows, bands});
+    replay = raster_cache_.find(key);
+    if (!replay) recorded.resize(static_cast<std::size_t>(bands));
+  }
   pool_->run(bands, [&](int b) {
     const int y0 = r0 + static_cast<int>(std::int64_t{rows} * b / bands);
     const int y1 = r0 + static_cast<int>(std::int64_t{rows} * (b + 1) / bands);
     FragmentSpan& bs = band_spans_[static_cast<std::size_t>(b)];
+    std::vector<TriangleRef>& seq = band_scratch_[static_cast<std::size_t>(b)].sequence;
+    seq.clear();
     for (const BatchTriangle& t : batch_triangles_)  // every triangle, in order; only this band's rows
-      if (t.r0 < y1 && t.r1 > y0) raster_triangle(ds, tri(t), y0, y1, bs, b);
-    shade_group(ds, bs, b);
+      if (t.r0 < y1 && t.r1 > y0) seq.push_back(tri(t));
+    if (replay) {
+      replay_sequence(ds, seq, (*replay)[static_cast<std::size_t>(b)], bs, b);
+    } else if (cache) {
+      record_sequence(ds, seq, y0, y1, bs, b, recorded[static_cast<std::size_t>(b)]);
+    } else {
+      for (const TriangleRef& t : seq) raster_triangle(ds, t, y0, y1, bs, b);
+      shade_group(ds, bs, b);
+    }
   });
+  if (cache && !replay) raster_cache_.insert(std::move(key), std::move(recorded));
 }
 
 }  // namespace ffsim

@@ -1,0 +1,121 @@
+// The raster cache in the draw path (sim/raster_cache.h, docs/performance.md 13.1):
+// a sequence of triangles is rasterized and recorded the first time, replayed
+// when the same key comes again.
+//
+// What raster_triangle's span path does with a sequence (sim/draw.cpp: runs
+// gathered into groups, a group closed when a run meets one of its pixels, at
+// kGroupFragments fragments, when coords_reuse_mask changes, or before a long
+// run) depends only on the triangles' snapped positions and coords_reuse_mask,
+// the rows and the window, and starts from an empty group. The depth codes of a
+// group depend on its runs and the vertices' depth codes. All of these are the
+// key, so the replay's groups, long runs and depth codes are the rasterizer's.
+#include <utility>
+
+#include "sim/context.h"
+#include "sim/draw_span.h"
+
+namespace ffsim {
+
+bool Context::raster_cache_applies(const DrawSetup& ds) const {
+  return raster_cache_on_ && fast_paths_ && ds.direct_writes &&  // (threads: ds.bands implies it)
+         span_path_supported(*ds.st, *ds.plan, ds.shade);
+}
+
+std::vector<std::int64_t> Context::raster_key(const DrawSetup& ds, const TriangleRef* tris, std::size_t count,
+                                              std::initializer_list<std::int64_t> rows) const {
+  std::vector<std::int64_t> key;
+  key.reserve(12 + rows.size() + 10 * count);
+  key.insert(key.end(), {profile_.subpixel_bits, fb_.width(), fb_.height(), ds.vx, ds.vy, ds.cx0, ds.cx1, ds.cy0,
+                         ds.cy1, ds.has_depth ? 1 : 0, static_cast<std::int64_t>(count)});
+  key.insert(key.end(), rows);
+  for (std::size_t i = 0; i < count; ++i) {
+    for (const WindowVertex* v : tris[i]) key.insert(key.end(), {v->p.x, v->p.y, ds.has_depth ? v->depth : 0});
+    key.push_back(coords_reuse_mask(*ds.plan, tris[i]));
+  }
+  return key;
+}
+
+void Context::draw_sequence(const DrawSetup& ds, const std::vector<TriangleRef>& tris, FragmentSpan& span) {
+  if (!raster_cache_applies(ds)) {
+    for (const TriangleRef& t : tris) raster_triangle(ds, t, ds.cy0, ds.cy1, span, -1);
+    shade_group(ds, span, -1);
+    return;
+  }
+  std::vector<std::int64_t> key = raster_key(ds, tris.data(), tris.size(), {ds.cy0, ds.cy1});
+  if (const std::vector<RasterRecording>* rec = raster_cache_.find(key)) {
+    replay_sequence(ds, tris, rec->front(), span, -1);
+    return;
+  }
+  std::vector<RasterRecording> rec(1);
+  record_sequence(ds, tris, ds.cy0, ds.cy1, span, -1, rec.front());
+  raster_cache_.insert(std::move(key), std::move(rec));
+}
+
+RecordedGroup* Context::record_group(SpanScratch& sc) {
+  RasterRecording& r = *sc.recording;
+  r.steps.push_back({false, r.groups.size()});
+  RecordedGroup& g = r.groups.emplace_back();
+  g.weight = sc.weight;
+  g.run_y = sc.run_y;
+  g.run_x0 = sc.run_x0;
+  g.run_length = sc.run_length;
+  g.fragments = sc.group_fragments;
+  g.coords_reuse = sc.coords_reuse;
+  g.triangles.reserve(sc.triangles.size());
+  for (std::size_t i = 0; i < sc.triangles.size(); ++i) {
+    const GroupTriangle& t = sc.triangles[i];
+    g.triangles.push_back({sc.triangle_index[i], t.cov, t.run_begin, t.fragment_begin});
+  }
+  return &g;
+}
+
+void Context::record_sequence(const DrawSetup& ds, const std::vector<TriangleRef>& tris, int y0, int y1,
+                              FragmentSpan& span, int band, RasterRecording& rec) {
+  SpanScratch& sc = scratch_of(band);
+  shade_group(ds, span, band);  // (none open: a sequence starts with an empty group)
+  struct Stop {  // however this ends (the fragment operations may throw)
+    SpanScratch& sc;
+    ~Stop() { sc.recording = nullptr; }
+  } stop{sc};
+  sc.recording = &rec;
+  const std::uint64_t joined = sc.joined, met = sc.met;
+  for (std::size_t i = 0; i < tris.size(); ++i) {
+    sc.sequence_index = static_cast<int>(i);
+    raster_triangle(ds, tris[i], y0, y1, span, band);
+  }
+  shade_group(ds, span, band);
+  rec.joined = sc.joined - joined;
+  rec.met = sc.met - met;
+}
+
+void Context::replay_sequence(const DrawSetup& ds, const std::vector<TriangleRef>& tris, const RasterRecording& rec,
+                              FragmentSpan& span, int band) {
+  SpanScratch& sc = scratch_of(band);
+  shade_group(ds, span, band);  // (none open)
+  for (const RasterRecording::Step& step : rec.steps) {
+    if (step.long_run) {
+      const RecordedLongRun& l = rec.long_runs[step.index];
+      shade_long_run(ds, tris[static_cast<std::size_t>(l.index)], l.cov, l.y, l.x0, l.count, l.weight, span, band);
+      continue;
+    }
+    const RecordedGroup& g = rec.groups[step.index];
+    sc.weight.assign(g.weight.begin(), g.weight.end());
+    sc.run_y.assign(g.run_y.begin(), g.run_y.end());
+    sc.run_x0.assign(g.run_x0.begin(), g.run_x0.end());
+    sc.run_length.assign(g.run_length.begin(), g.run_length.end());
+    sc.triangles.clear();
+    for (const RecordedTriangle& t : g.triangles)
+      sc.triangles.push_back({tris[static_cast<std::size_t>(t.index)], t.cov, t.run_begin, t.fragment_begin});
+    sc.group_fragments = g.fragments;
+    sc.coords_reuse = g.coords_reuse;
+    if (!g.depth.empty()) {
+      sc.depth.assign(g.depth.begin(), g.depth.end());
+      sc.depth_ready = true;
+    }
+    shade_group(ds, span, band);
+  }
+  sc.joined += rec.joined;
+  sc.met += rec.met;
+}
+
+}  // namespace ffsim

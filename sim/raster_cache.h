@@ -1,0 +1,93 @@
+// The raster cache (docs/performance.md 13.1): what the span path's rasterizer
+// and grouping produced for a sequence of triangles, kept so that the same
+// sequence drawn again (the next pass of a multipass algorithm over the same
+// mesh) is not rasterized again.
+//
+// A recording is a pure function of its key: the triangles' snapped window
+// positions and depth codes in drawing order, each triangle's coords_reuse_mask,
+// the rows drawn, the window, the viewport corner and the sub-pixel bits
+// (Context::raster_key). So a replay hands the rest of the span path (shading,
+// fragment operations) exactly the runs, groups and depth codes that
+// rasterizing would have, in the same order, and every output bit is the same;
+// tests/sim/test_raster_cache.cpp draws random scenes with the cache on and off
+// and compares.
+#pragma once
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include "pipeline/raster/triangle.h"
+
+namespace ffsim {
+
+// A triangle of a recorded group: its index in the sequence (its vertices are the
+// current draw's), its coverage, and where its runs start in the group.
+struct RecordedTriangle {
+  int index = 0;
+  TriangleCoverage cov;
+  int run_begin = 0, fragment_begin = 0;
+};
+
+// A group of runs as shade_group received it (Context::SpanScratch), and the depth
+// codes shading computed for it (empty without a depth buffer).
+struct RecordedGroup {
+  std::vector<std::array<std::int64_t, 3>> weight;
+  std::vector<int> run_y, run_x0, run_length;
+  std::vector<RecordedTriangle> triangles;
+  int fragments = 0;
+  unsigned coords_reuse = 0;
+  std::vector<std::uint32_t> depth;
+};
+
+// A run of kLongRun fragments or more, shaded on its own.
+struct RecordedLongRun {
+  int index = 0;
+  TriangleCoverage cov;
+  int y = 0, x0 = 0, count = 0;
+  std::array<std::int64_t, 3> weight{};  // at its first fragment
+};
+
+// One sequence's groups and long runs in drawing order, and the grouping
+// statistics it added (Context::span_group_stats).
+struct RasterRecording {
+  struct Step {
+    bool long_run = false;
+    std::size_t index = 0;  // into groups or long_runs
+  };
+  std::vector<Step> steps;
+  std::vector<RecordedGroup> groups;
+  std::vector<RecordedLongRun> long_runs;
+  std::uint64_t joined = 0, met = 0;
+  std::size_t bytes() const;
+};
+
+class RasterCache {
+ public:
+  // At most this many bytes of recordings; an insertion beyond it empties the
+  // cache first (a trace's passes reuse the geometry of the pass before).
+  static constexpr std::size_t kMaxBytes = std::size_t{64} << 20;
+
+  // The recordings (one per band of rows; one when not split) of `key`, or null.
+  const std::vector<RasterRecording>* find(const std::vector<std::int64_t>& key);
+  void insert(std::vector<std::int64_t> key, std::vector<RasterRecording> recordings);
+  void clear();
+
+  std::uint64_t hits() const { return hits_; }
+  std::uint64_t misses() const { return misses_; }
+  std::size_t bytes() const { return bytes_; }
+
+ private:
+  struct Entry {
+    std::vector<std::int64_t> key;
+    std::vector<RasterRecording> recordings;
+    std::size_t bytes = 0;
+  };
+  static std::uint64_t hash(const std::vector<std::int64_t>& key);
+  std::unordered_map<std::uint64_t, Entry> entries_;  // by hash; the key is compared
+  std::size_t bytes_ = 0;
+  std::uint64_t hits_ = 0, misses_ = 0;
+};
+
+}  // namespace ffsim

@@ -1,0 +1,168 @@
+// The raster cache (sim/raster_cache.h, sim/draw_replay.cpp): a multipass scene
+// draws the same mesh again and again with new state each pass, as the paper's
+// traces do. With the cache on, every pass after the first replays the
+// rasterizer's groups, long runs and depth codes; the buffers must be exactly
+// those of the same scene with the cache off and of the per-fragment reference.
+#include <doctest/doctest.h>
+
+#include <array>
+#include <vector>
+
+#include "fast_scene.h"
+
+using namespace ffsim;
+using namespace ffsim::test;
+
+namespace {
+
+constexpr int kW = 192, kH = 128;
+
+struct MeshVertex {
+  double x, y, z;
+  std::array<double, 4> color, tc0, tc1;
+};
+
+// A jittered grid of `cx` x `cy` cells over the window (some vertices outside it),
+// per-vertex colours, texture coordinates and depths.
+std::vector<MeshVertex> jittered_grid(SceneRng& r, int cx, int cy) {
+  std::vector<MeshVertex> g;
+  for (int j = 0; j <= cy; ++j)
+    for (int i = 0; i <= cx; ++i) {
+      MeshVertex v;
+      v.x = (i - 0.1) * (kW * 1.2 / cx) + r.d(-3, 3);
+      v.y = (j - 0.1) * (kH * 1.2 / cy) + r.d(-3, 3);
+      v.z = r.d(-0.5, 0.5);
+      v.color = {r.d(0, 1), r.d(0, 1), r.d(0, 1), r.d(0, 1)};
+      v.tc0 = {v.x / kW * 2, v.y / kH * 2, 0, 1};
+      v.tc1 = r.b(50) ? v.tc0 : std::array<double, 4>{r.d(-1, 2), r.d(-1, 2), 0, r.b(80) ? 1.0 : r.d(0.5, 2)};
+      g.push_back(v);
+    }
+  return g;
+}
+
+// `passes` passes over the same geometry: a grid of small cells as triangle
+// strips (one glEnd per row), a grid of large cells as GL_TRIANGLES (runs of 64
+// fragments and more), each pass with new textures, combiners, fragment
+// operations and vertex colours. Sometimes a pass moves the mesh in depth, or
+// changes unit 1's texture coordinates (other coords_reuse_mask): those must
+// not replay an earlier pass's recording.
+void draw_multipass(Context& c, std::uint32_t seed, int passes) {
+  SceneRng r(seed);
+  random_clear_and_projection(c, r, 0.3);
+  const int cx = r.i(8, 20), cy = r.i(6, 14);
+  const std::vector<MeshVertex> small = jittered_grid(r, cx, cy), large = jittered_grid(r, 2, 2);
+  for (int pass = 0; pass < passes; ++pass) {
+    c.flush_deferred();  // (set_defer_draws: before any state change)
+    for (int u = 0; u < 2; ++u) random_texture_or_off(c, r, u, static_cast<std::uint32_t>(1 + u + 2 * pass), 75);
+    if (r.b(35)) random_combiners(c, r);
+    else c.disable(gl::REGISTER_COMBINERS_NV);
+    if (r.b(30)) c.enable(gl::COLOR_SUM); else c.disable(gl::COLOR_SUM);
+    random_fragment_ops(c, r);
+    if (r.b(50)) {  // the depth test on (a replay's depth codes decide it)
+      c.enable(gl::DEPTH_TEST);
+      c.depthFunc(r.b(50) ? gl::LEQUAL : gl::GEQUAL);
+    }
+    const double dz = r.b(80) ? 0.0 : r.d(-0.3, 0.3);
+    const bool other_tc1 = r.b(15);
+    const double tint = r.d(0, 1);
+    auto vertex = [&](const MeshVertex& v) {
+      c.color4(v.color[0] * tint, v.color[1], v.color[2], v.color[3]);
+      c.multiTexCoord4(gl::TEXTURE0, v.tc0[0], v.tc0[1], v.tc0[2], v.tc0[3]);
+      if (other_tc1) c.multiTexCoord4(gl::TEXTURE1, v.tc0[1], v.tc0[0], 0, 1);
+      else c.multiTexCoord4(gl::TEXTURE1, v.tc1[0], v.tc1[1], v.tc1[2], v.tc1[3]);
+      c.vertex3(v.x, v.y, v.z + dz);
+    };
+    auto at = [](const std::vector<MeshVertex>& g, int cols, int i, int j) -> const MeshVertex& {
+      return g[static_cast<std::size_t>(j * (cols + 1) + i)];
+    };
+    for (int j = 0; j < cy; ++j) {
+      c.begin(gl::TRIANGLE_STRIP);
+      for (int i = 0; i <= cx; ++i) {
+        vertex(at(small, cx, i, j + 1));
+        vertex(at(small, cx, i, j));
+      }
+      c.end();
+    }
+    c.begin(gl::TRIANGLES);
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 2; ++i) {
+        vertex(at(large, 2, i, j)), vertex(at(large, 2, i + 1, j)), vertex(at(large, 2, i + 1, j + 1));
+        vertex(at(large, 2, i, j)), vertex(at(large, 2, i + 1, j + 1)), vertex(at(large, 2, i, j + 1));
+      }
+    c.end();
+  }
+  c.flush_deferred();
+}
+
+}  // namespace
+
+TEST_CASE("raster cache: multipass meshes replayed == rasterized again == per-fragment path, 1 and 2 threads") {
+  std::uint64_t hits = 0, misses = 0;
+  for (const char* profile : {"geforce256", "rgba12"})
+    for (int threads : {1, 2})
+#ifdef FFSIM_SANITIZE
+      for (std::uint32_t seed = 900; seed < 903; ++seed) {
+#else
+      for (std::uint32_t seed = 900; seed < 910; ++seed) {
+#endif
+        INFO("profile ", std::string(profile), " threads ", threads, " seed ", seed);
+        Context cached(profile_named(profile), kW, kH), uncached(profile_named(profile), kW, kH),
+            reference(profile_named(profile), kW, kH);
+        for (Context* c : {&cached, &uncached, &reference}) c->set_threads(threads);
+        for (Context* c : {&cached, &uncached}) c->set_defer_draws(seed % 2 == 0);  // (a batch of several glEnds)
+        uncached.set_raster_cache(false);
+        reference.set_fast_paths(false);
+        for (Context* c : {&cached, &uncached, &reference}) draw_multipass(*c, seed, 4);
+        REQUIRE(buffer_hashes(cached) == buffer_hashes(uncached));
+        REQUIRE(buffer_hashes(cached) == buffer_hashes(reference));
+        CHECK(cached.fragments_written() == uncached.fragments_written());
+        CHECK(cached.span_group_stats().joined == uncached.span_group_stats().joined);
+        CHECK(cached.span_group_stats().met == uncached.span_group_stats().met);
+        CHECK(uncached.raster_cache().hits() == 0);
+        hits += cached.raster_cache().hits();
+        misses += cached.raster_cache().misses();
+      }
+  CHECK(hits > 100);   // replays happened
+  CHECK(misses > 50);  // and first sightings, depth moves, new coordinates
+}
+
+TEST_CASE("raster cache: a replay needs the same positions, depths and coordinate sharing") {
+  // One strip drawn again unchanged (a hit), moved in depth (a miss), with unit
+  // 1's coordinates no longer unit 0's (a miss), then as the first time (a hit).
+  Context c(profile_named("geforce256"), 64, 64);
+  ortho_window(c);
+  std::vector<std::uint8_t> texels(4 * 4 * 4, 200);
+  for (int u = 0; u < 2; ++u) {
+    c.activeTexture(gl::TEXTURE0 + static_cast<GLenum>(u));
+    c.bindTexture(gl::TEXTURE_2D, static_cast<std::uint32_t>(1 + u));
+    c.texImage2D(gl::TEXTURE_2D, 0, gl::RGBA8, 4, 4, 0, gl::RGBA, gl::UNSIGNED_BYTE, texels.data());
+    c.texParameteri(gl::TEXTURE_2D, gl::TEXTURE_MIN_FILTER, gl::LINEAR);
+    c.texParameteri(gl::TEXTURE_2D, gl::TEXTURE_MAG_FILTER, gl::LINEAR);
+    c.enable(gl::TEXTURE_2D);
+  }
+  auto strip = [&](double z, bool same_coords) {
+    c.begin(gl::TRIANGLE_STRIP);
+    for (int i = 0; i <= 4; ++i)
+      for (int j : {1, 0}) {
+        c.multiTexCoord2(gl::TEXTURE0, i / 4.0, j);
+        c.multiTexCoord2(gl::TEXTURE1, same_coords ? i / 4.0 : j, same_coords ? j : i / 4.0);
+        c.vertex3(3 + 14.5 * i, 5 + 40.0 * j, z);
+      }
+    c.end();
+  };
+  strip(0.25, true);
+  CHECK(c.raster_cache().misses() == 1);
+  strip(0.25, true);
+  CHECK(c.raster_cache().hits() == 1);
+  strip(0.5, true);
+  CHECK(c.raster_cache().misses() == 2);
+  strip(0.25, false);
+  CHECK(c.raster_cache().misses() == 3);
+  strip(0.25, true);
+  CHECK(c.raster_cache().hits() == 2);
+  CHECK(c.raster_cache().bytes() > 0);
+  c.set_raster_cache(false);
+  CHECK(c.raster_cache().bytes() == 0);
+  strip(0.25, true);
+  CHECK(c.raster_cache().hits() == 2);
+}
