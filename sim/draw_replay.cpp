@@ -5,10 +5,12 @@
 // What raster_triangle's span path does with a sequence (sim/draw.cpp: runs
 // gathered into groups, a group closed when a run meets one of its pixels, at
 // kGroupFragments fragments, when coords_reuse_mask changes, or before a long
-// run) depends only on the triangles' snapped positions and coords_reuse_mask,
-// the rows and the window, and starts from an empty group. The depth codes of a
+// run) depends only on the triangles' snapped positions, which of them have
+// equal coords_reuse_masks, the rows and the window, and starts from an empty
+// group. The depth codes of a
 // group depend on its runs and the vertices' depth codes. All of these are the
 // key, so the replay's groups, long runs and depth codes are the rasterizer's.
+#include <array>
 #include <utility>
 
 #include "sim/context.h"
@@ -28,9 +30,19 @@ std::vector<std::int64_t> Context::raster_key(const DrawSetup& ds, const Triangl
   key.insert(key.end(), {profile_.subpixel_bits, fb_.width(), fb_.height(), ds.vx, ds.vy, ds.cx0, ds.cx1, ds.cy0,
                          ds.cy1, ds.has_depth ? 1 : 0, static_cast<std::int64_t>(count)});
   key.insert(key.end(), rows);
+  // coords_reuse_mask matters to the grouping only through which triangles'
+  // masks are equal (a group closes when a triangle's differs from the group's):
+  // each mask is keyed as the index of its first appearance in the sequence, so
+  // passes sampling other units of the same mesh share the recording.
+  static_assert(kShadeUnits <= 5);
+  std::array<int, 32> first_seen;  // by mask; -1: not yet
+  first_seen.fill(-1);
+  int distinct = 0;
   for (std::size_t i = 0; i < count; ++i) {
     for (const WindowVertex* v : tris[i]) key.insert(key.end(), {v->p.x, v->p.y, ds.has_depth ? v->depth : 0});
-    key.push_back(coords_reuse_mask(*ds.plan, tris[i]));
+    int& label = first_seen[coords_reuse_mask(*ds.plan, tris[i]) & 31u];
+    if (label < 0) label = distinct++;
+    key.push_back(label);
   }
   return key;
 }
@@ -60,7 +72,6 @@ RecordedGroup* Context::record_group(SpanScratch& sc) {
   g.run_x0 = sc.run_x0;
   g.run_length = sc.run_length;
   g.fragments = sc.group_fragments;
-  g.coords_reuse = sc.coords_reuse;
   g.triangles.reserve(sc.triangles.size());
   for (std::size_t i = 0; i < sc.triangles.size(); ++i) {
     const GroupTriangle& t = sc.triangles[i];
@@ -107,7 +118,7 @@ void Context::replay_sequence(const DrawSetup& ds, const std::vector<TriangleRef
     for (const RecordedTriangle& t : g.triangles)
       sc.triangles.push_back({tris[static_cast<std::size_t>(t.index)], t.cov, t.run_begin, t.fragment_begin});
     sc.group_fragments = g.fragments;
-    sc.coords_reuse = g.coords_reuse;
+    sc.coords_reuse = coords_reuse_mask(*ds.plan, sc.triangles.front().tv);  // (this pass's; the same pattern)
     if (!g.depth.empty()) {
       sc.depth.assign(g.depth.begin(), g.depth.end());
       sc.depth_ready = true;

@@ -4,9 +4,9 @@
 // mesh) is not rasterized again.
 //
 // A recording is a pure function of its key: the triangles' snapped window
-// positions and depth codes in drawing order, each triangle's coords_reuse_mask,
-// the rows drawn, the window, the viewport corner and the sub-pixel bits
-// (Context::raster_key). So a replay hands the rest of the span path (shading,
+// positions and depth codes in drawing order, which of them share a
+// coords_reuse_mask, the rows drawn, the window, the viewport corner and the
+// sub-pixel bits (Context::raster_key). So a replay hands the rest of the span path (shading,
 // fragment operations) exactly the runs, groups and depth codes that
 // rasterizing would have, in the same order, and every output bit is the same;
 // tests/sim/test_raster_cache.cpp draws random scenes with the cache on and off
@@ -37,7 +37,6 @@ struct RecordedGroup {
   std::vector<int> run_y, run_x0, run_length;
   std::vector<RecordedTriangle> triangles;
   int fragments = 0;
-  unsigned coords_reuse = 0;
   std::vector<std::uint32_t> depth;
 };
 

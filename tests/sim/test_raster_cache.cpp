@@ -126,43 +126,62 @@ TEST_CASE("raster cache: multipass meshes replayed == rasterized again == per-fr
   CHECK(misses > 50);  // and first sightings, depth moves, new coordinates
 }
 
-TEST_CASE("raster cache: a replay needs the same positions, depths and coordinate sharing") {
+TEST_CASE("raster cache: a replay needs the same positions, depths and pattern of coordinate sharing") {
   // One strip drawn again unchanged (a hit), moved in depth (a miss), with unit
-  // 1's coordinates no longer unit 0's (a miss), then as the first time (a hit).
-  Context c(profile_named("geforce256"), 64, 64);
-  ortho_window(c);
-  std::vector<std::uint8_t> texels(4 * 4 * 4, 200);
-  for (int u = 0; u < 2; ++u) {
-    c.activeTexture(gl::TEXTURE0 + static_cast<GLenum>(u));
-    c.bindTexture(gl::TEXTURE_2D, static_cast<std::uint32_t>(1 + u));
-    c.texImage2D(gl::TEXTURE_2D, 0, gl::RGBA8, 4, 4, 0, gl::RGBA, gl::UNSIGNED_BYTE, texels.data());
-    c.texParameteri(gl::TEXTURE_2D, gl::TEXTURE_MIN_FILTER, gl::LINEAR);
-    c.texParameteri(gl::TEXTURE_2D, gl::TEXTURE_MAG_FILTER, gl::LINEAR);
-    c.enable(gl::TEXTURE_2D);
+  // 1's coordinates other than unit 0's at every vertex (every triangle's
+  // coords_reuse_mask changes alike: the same groups, a hit), at some vertices
+  // only (triangles of different masks: a miss), then as the first time (a hit).
+  // The same calls with the cache off leave the same buffers.
+  Context c(profile_named("geforce256"), 64, 64), off(profile_named("geforce256"), 64, 64);
+  off.set_raster_cache(false);
+  for (Context* x : {&c, &off}) {
+    ortho_window(*x);
+    std::vector<std::uint8_t> texels(4 * 4 * 4);
+    for (std::size_t i = 0; i < texels.size(); ++i) texels[i] = static_cast<std::uint8_t>(37 * i);
+    for (int u = 0; u < 2; ++u) {
+      x->activeTexture(gl::TEXTURE0 + static_cast<GLenum>(u));
+      x->bindTexture(gl::TEXTURE_2D, static_cast<std::uint32_t>(1 + u));
+      x->texImage2D(gl::TEXTURE_2D, 0, gl::RGBA8, 4, 4, 0, gl::RGBA, gl::UNSIGNED_BYTE, texels.data());
+      x->texParameteri(gl::TEXTURE_2D, gl::TEXTURE_MIN_FILTER, gl::LINEAR);
+      x->texParameteri(gl::TEXTURE_2D, gl::TEXTURE_MAG_FILTER, gl::LINEAR);
+      x->texEnvi(gl::TEXTURE_ENV, gl::TEXTURE_ENV_MODE, gl::ADD);
+      x->enable(gl::TEXTURE_2D);
+    }
+    x->enable(gl::BLEND);
+    x->blendFunc(gl::ONE, gl::ONE);
   }
-  auto strip = [&](double z, bool same_coords) {
-    c.begin(gl::TRIANGLE_STRIP);
-    for (int i = 0; i <= 4; ++i)
-      for (int j : {1, 0}) {
-        c.multiTexCoord2(gl::TEXTURE0, i / 4.0, j);
-        c.multiTexCoord2(gl::TEXTURE1, same_coords ? i / 4.0 : j, same_coords ? j : i / 4.0);
-        c.vertex3(3 + 14.5 * i, 5 + 40.0 * j, z);
-      }
-    c.end();
+  enum Coords { kSame, kOther, kMixed };  // unit 1's against unit 0's
+  auto strip = [&](double z, Coords coords) {
+    for (Context* x : {&c, &off}) {
+      x->begin(gl::TRIANGLE_STRIP);
+      for (int i = 0; i <= 4; ++i)
+        for (int j : {1, 0}) {
+          const bool other = coords == kOther || (coords == kMixed && i >= 3);
+          x->multiTexCoord2(gl::TEXTURE0, i / 4.0, j);
+          x->multiTexCoord2(gl::TEXTURE1, other ? j : i / 4.0, other ? i / 4.0 : j);
+          x->vertex3(3 + 14.5 * i, 5 + 40.0 * j, z);
+        }
+      x->end();
+    }
   };
-  strip(0.25, true);
+  strip(0.25, kSame);
   CHECK(c.raster_cache().misses() == 1);
-  strip(0.25, true);
+  strip(0.25, kSame);
   CHECK(c.raster_cache().hits() == 1);
-  strip(0.5, true);
+  strip(0.5, kSame);
   CHECK(c.raster_cache().misses() == 2);
-  strip(0.25, false);
-  CHECK(c.raster_cache().misses() == 3);
-  strip(0.25, true);
+  strip(0.25, kOther);
   CHECK(c.raster_cache().hits() == 2);
+  strip(0.25, kMixed);
+  CHECK(c.raster_cache().misses() == 3);
+  strip(0.25, kSame);
+  CHECK(c.raster_cache().hits() == 3);
+  CHECK(buffer_hashes(c) == buffer_hashes(off));
+  CHECK(off.raster_cache().hits() + off.raster_cache().misses() == 0);
   CHECK(c.raster_cache().bytes() > 0);
   c.set_raster_cache(false);
   CHECK(c.raster_cache().bytes() == 0);
-  strip(0.25, true);
-  CHECK(c.raster_cache().hits() == 2);
+  strip(0.25, kSame);
+  CHECK(c.raster_cache().hits() == 3);
+  CHECK(buffer_hashes(c) == buffer_hashes(off));
 }
