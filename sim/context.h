@@ -687,11 +687,10 @@ class Context {
     std::uint64_t joined = 0, met = 0;  // span_group_stats
     // The raster cache: the recording being made (null: none), the index in the
     // sequence of the triangle being rasterized, and that index for each of
-    // `triangles`; depth_ready: `depth` holds the group's codes (a replay).
+    // `triangles`.
     RasterRecording* recording = nullptr;
     int sequence_index = 0;
     std::vector<int> triangle_index;
-    bool depth_ready = false;
     std::vector<TriangleRef> sequence;  // a band's triangles (flush_batch)
   };
   SpanScratch span_scratch_;
@@ -749,6 +748,18 @@ class Context {
   // done (a group may hold runs of earlier triangles of the same glEnd).
   SpanScratch& scratch_of(int band) { return band < 0 ? span_scratch_ : band_scratch_[static_cast<std::size_t>(band)]; }
   void shade_group(const DrawSetup& ds, FragmentSpan& span, int band);
+  // A group's runs where shade_group_runs reads them: the scratch's arrays, or a
+  // raster-cache recording's with its depth codes and pixel list (null: computed).
+  struct GroupRuns {
+    const std::array<std::int64_t, 3>* weight;
+    const int *run_y, *run_x0, *length;
+    int runs, fragments;
+    const std::uint32_t* depth = nullptr;
+    const std::uint32_t* pixel = nullptr;
+  };
+  // The group's triangles are sc.triangles; `recorded` (or null) receives the
+  // depth codes and pixel list computed.
+  void shade_group_runs(const DrawSetup& ds, FragmentSpan& span, int band, const GroupRuns& g, RecordedGroup* recorded);
   void clear_group(SpanScratch& sc);
   // The group in `sc` appended to sc.recording (its depth codes follow once shaded).
   static RecordedGroup* record_group(SpanScratch& sc);

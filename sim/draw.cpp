@@ -339,7 +339,6 @@ void Context::clear_group(SpanScratch& sc) {
       if (rb.hi) sc.taken[rb.word + 1] &= ~rb.hi;
     }
   sc.marked = false;
-  sc.depth_ready = false;
   sc.triangle_index.clear();
   sc.group_fragments = 0;
   sc.weight.clear();
@@ -352,22 +351,32 @@ void Context::clear_group(SpanScratch& sc) {
 void Context::shade_group(const DrawSetup& ds, FragmentSpan& span, int band) {
   SpanScratch& sc = scratch_of(band);
   if (sc.run_length.empty()) return;  // (no runs: no triangles, no bits set)
+  GroupRuns g{sc.weight.data(), sc.run_y.data(), sc.run_x0.data(), sc.run_length.data(),
+              static_cast<int>(sc.run_length.size()), sc.group_fragments};
+  shade_group_runs(ds, span, band, g, sc.recording ? record_group(sc) : nullptr);
+}
+
+void Context::shade_group_runs(const DrawSetup& ds, FragmentSpan& span, int band, const GroupRuns& g,
+                               RecordedGroup* recorded) {
+  SpanScratch& sc = scratch_of(band);
   struct Emptied {  // however this ends (the fragment operations may throw)
     Context& c;
     SpanScratch& sc;
     ~Emptied() { c.clear_group(sc); }
   } emptied{*this, sc};
-  const FastRuns runs{sc.weight.data(), sc.run_length.data(), static_cast<int>(sc.run_length.size()), sc.group_fragments};
+  const FastRuns runs{g.weight, g.length, g.runs, g.fragments};
   const bool has_depth = ds.has_depth;
-  RecordedGroup* recorded = sc.recording ? record_group(sc) : nullptr;
   sc.codes.resize(4 * static_cast<std::size_t>(runs.count));
-  if (has_depth) sc.depth.resize(static_cast<std::size_t>(runs.count));
-  for (int r = 0; r < runs.runs; ++r)
-    prefetch_run(ds.buffers, fb_.width(), fb_.height(), sc.run_y[static_cast<std::size_t>(r)],
-                 sc.run_x0[static_cast<std::size_t>(r)], runs.length[r]);
+  // The depth codes: a replay's, or interpolated here.
+  const std::uint32_t* depth = has_depth ? g.depth : nullptr;
+  if (has_depth && !depth) sc.depth.resize(static_cast<std::size_t>(runs.count));
+  for (int r = 0; r < runs.runs; ++r) prefetch_run(ds.buffers, fb_.width(), fb_.height(), g.run_y[r], g.run_x0[r], runs.length[r]);
   shade_runs_fast(*ds.st, *ds.plan, sc.triangles.data(), static_cast<int>(sc.triangles.size()), runs, ds.flat, ds.shade,
-                  sc.codes.data(), has_depth ? sc.depth.data() : nullptr, sc);
-  if (recorded && has_depth) recorded->depth = sc.depth;
+                  sc.codes.data(), has_depth && !depth ? sc.depth.data() : nullptr, sc);
+  if (has_depth && !depth) {
+    depth = sc.depth.data();
+    if (recorded) recorded->depth = sc.depth;
+  }
   // The fragment operations for the whole group in one call when every run
   // lies inside the write rectangle (window and scissor) and the colour is
   // codes: the group's fragments are distinct pixels (a triangle's are; a run
@@ -376,36 +385,39 @@ void Context::shade_group(const DrawSetup& ds, FragmentSpan& span, int band) {
   const WriteRect& rect = fragment_current_constants_.rect;
   bool listed = ds.buffers.codes != nullptr;
   for (int r = 0; r < runs.runs && listed; ++r) {
-    const int y = sc.run_y[static_cast<std::size_t>(r)], x0 = sc.run_x0[static_cast<std::size_t>(r)];
+    const int y = g.run_y[r], x0 = g.run_x0[r];
     listed = y >= rect.y0 && y < rect.y1 && x0 >= rect.x0 && x0 + runs.length[r] <= rect.x1;
   }
   if (listed) {
-    // Each run's pixel indices eight at a time (a run of a small triangle is a
-    // few pixels): the last block may write past the run into the next run's
-    // slots, which that run then overwrites; the list holds 7 slots more.
-    sc.pixel.resize(static_cast<std::size_t>(runs.count) + 7);
-    const auto W = static_cast<std::uint32_t>(fb_.width());
-    std::uint32_t* px = sc.pixel.data();
-    for (int r = 0, off = 0; r < runs.runs; off += runs.length[r], ++r) {
-      const auto first = static_cast<std::uint32_t>(sc.run_y[static_cast<std::size_t>(r)]) * W +
-                         static_cast<std::uint32_t>(sc.run_x0[static_cast<std::size_t>(r)]);
-      for (int i = 0; i < runs.length[r]; i += 8)
-        for (int j = 0; j < 8; ++j) px[off + i + j] = first + static_cast<std::uint32_t>(i + j);
+    const std::uint32_t* pixel = g.pixel;  // a replay's, or built here
+    if (!pixel) {
+      // Each run's pixel indices eight at a time (a run of a small triangle is a
+      // few pixels): the last block may write past the run into the next run's
+      // slots, which that run then overwrites; the list holds 7 slots more.
+      sc.pixel.resize(static_cast<std::size_t>(runs.count) + 7);
+      const auto W = static_cast<std::uint32_t>(fb_.width());
+      std::uint32_t* px = sc.pixel.data();
+      for (int r = 0, off = 0; r < runs.runs; off += runs.length[r], ++r) {
+        const auto first = static_cast<std::uint32_t>(g.run_y[r]) * W + static_cast<std::uint32_t>(g.run_x0[r]);
+        for (int i = 0; i < runs.length[r]; i += 8)
+          for (int j = 0; j < 8; ++j) px[off + i + j] = first + static_cast<std::uint32_t>(i + j);
+      }
+      pixel = px;
+      if (recorded) recorded->pixel = sc.pixel;
     }
     count_written(band, static_cast<std::uint64_t>(runs.count), static_cast<std::uint64_t>(runs.runs));
-    run_fragment_plan_pixels(*fragment_current_plan_, fragment_current_constants_, sc.codes.data(),
-                             has_depth ? sc.depth.data() : nullptr, sc.pixel.data(), runs.count, ds.buffers);
+    run_fragment_plan_pixels(*fragment_current_plan_, fragment_current_constants_, sc.codes.data(), depth, pixel,
+                             runs.count, ds.buffers);
     return;
   }
   for (int r = 0, off = 0; r < runs.runs; off += runs.length[r], ++r) {
     const auto o = static_cast<std::size_t>(off), len = static_cast<std::size_t>(runs.length[r]);
-    span.y = sc.run_y[static_cast<std::size_t>(r)];
-    span.x0 = sc.run_x0[static_cast<std::size_t>(r)];
+    span.y = g.run_y[r];
+    span.x0 = g.run_x0[r];
     span.count = runs.length[r];
     span.codes.assign(sc.codes.begin() + static_cast<std::ptrdiff_t>(4 * o),
                       sc.codes.begin() + static_cast<std::ptrdiff_t>(4 * (o + len)));
-    if (has_depth)
-      span.depth.assign(sc.depth.begin() + static_cast<std::ptrdiff_t>(o), sc.depth.begin() + static_cast<std::ptrdiff_t>(o + len));
+    if (has_depth) span.depth.assign(depth + o, depth + o + len);
     count_written(band, 0, 1);
     write_span(ds, span, band);
   }

@@ -110,20 +110,17 @@ void Context::replay_sequence(const DrawSetup& ds, const std::vector<TriangleRef
       continue;
     }
     const RecordedGroup& g = rec.groups[step.index];
-    sc.weight.assign(g.weight.begin(), g.weight.end());
-    sc.run_y.assign(g.run_y.begin(), g.run_y.end());
-    sc.run_x0.assign(g.run_x0.begin(), g.run_x0.end());
-    sc.run_length.assign(g.run_length.begin(), g.run_length.end());
     sc.triangles.clear();
     for (const RecordedTriangle& t : g.triangles)
       sc.triangles.push_back({tris[static_cast<std::size_t>(t.index)], t.cov, t.run_begin, t.fragment_begin});
-    sc.group_fragments = g.fragments;
     sc.coords_reuse = coords_reuse_mask(*ds.plan, sc.triangles.front().tv);  // (this pass's; the same pattern)
-    if (!g.depth.empty()) {
-      sc.depth.assign(g.depth.begin(), g.depth.end());
-      sc.depth_ready = true;
-    }
-    shade_group(ds, span, band);
+    // The recorded arrays in place (no copy); depth codes and pixel list when
+    // recorded (the first drawing had a depth buffer, or wrote by list).
+    GroupRuns runs{g.weight.data(), g.run_y.data(), g.run_x0.data(), g.run_length.data(),
+                   static_cast<int>(g.run_length.size()), g.fragments};
+    runs.depth = g.depth.empty() ? nullptr : g.depth.data();
+    runs.pixel = g.pixel.empty() ? nullptr : g.pixel.data();
+    shade_group_runs(ds, span, band, runs, nullptr);
   }
   sc.joined += rec.joined;
   sc.met += rec.met;

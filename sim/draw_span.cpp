@@ -258,7 +258,7 @@ void Context::shade_runs_fast(const ShadingState& st, const ShadingPlan& plan, c
         static_cast<std::size_t>(g.fragment_begin));
     }
   };
-  if (fb_.has_depth() && !sc.depth_ready)  // (a raster-cache replay brings the codes)
+  if (depth)  // (null: no depth buffer, or a raster-cache replay brings the codes)
     each([&](const GroupTriangle& g, const FastRuns& r, std::size_t off) {
       interpolate_code_runs(r.first, r.length, r.runs, g.cov.dwdx, g.cov.area, g.tv[0]->depth, g.tv[1]->depth,
                             g.tv[2]->depth, depth + off);

@@ -30,14 +30,16 @@ struct RecordedTriangle {
   int run_begin = 0, fragment_begin = 0;
 };
 
-// A group of runs as shade_group received it (Context::SpanScratch), and the depth
-// codes shading computed for it (empty without a depth buffer).
+// A group of runs as shade_group received it (Context::SpanScratch), the depth
+// codes shading computed for it (empty without a depth buffer) and the pixel
+// indices the fragment operations took.
 struct RecordedGroup {
   std::vector<std::array<std::int64_t, 3>> weight;
   std::vector<int> run_y, run_x0, run_length;
   std::vector<RecordedTriangle> triangles;
   int fragments = 0;
   std::vector<std::uint32_t> depth;
+  std::vector<std::uint32_t> pixel;  // y·width + x per fragment, 7 spare (empty: not written by list)
 };
 
 // A run of kLongRun fragments or more, shaded on its own.
