@@ -33,13 +33,15 @@ inline constexpr std::uint32_t kNotPacked = 0xFFFFFFFFu;
 enum class StepKind { Call, Dump, DumpImage, Hash, ExpectHash, ExpectPixel, ExpectImage, ExpectError, ExpectEnabled };
 
 struct Step {
+  // What the replay loop reads for every call, first: one 64-byte line of a step
+  // (the rest of the step is read only for messages and non-call steps).
   StepKind kind = StepKind::Call;
   std::uint32_t packed_at = kNotPacked;  // Call: its arguments' PackedArg in Program::packed
+  const CommandDef* def = nullptr;       // Call
+  std::vector<ArgValue> args;            // Call
   SourceLoc where;        // the command's first token
   std::string line_text;  // the whole line, for messages
   std::string name;       // the command as written: "glClear", "dump", "expect", ...
-  const CommandDef* def = nullptr;  // Call
-  std::vector<ArgValue> args;       // Call
   BufferKind buffer = BufferKind::Color;  // Dump, Hash, ExpectHash, ExpectPixel
   std::string file;                       // Dump, DumpImage: path relative to the output directory
   ArgValue image;                         // DumpImage, ExpectImage: the client image (text = its name)
