@@ -1,6 +1,8 @@
 #include "sim/cli/cli.h"
 
+#include <algorithm>
 #include <ostream>
+#include <string>
 
 namespace ffsim::cli {
 
@@ -36,11 +38,9 @@ int usage_error(std::ostream& err, const std::string& subcommand, const std::str
 static void print_help(std::ostream& out) {
   out << "ffsim " FFSIM_VERSION " - a bit-exact simulator of the fixed-function GL pipeline of about 2000\n\n"
          "usage: ffsim [--help] [--version] COMMAND [ARGS...]\n\ncommands:\n";
-  for (const auto& s : subcommands()) {
-    out << "  " << s.name;
-    for (std::size_t i = s.name.size(); i < 12; ++i) out << ' ';
-    out << s.summary << "\n";
-  }
+  std::size_t width = 0;  // the summaries' column: two spaces after the longest name
+  for (const auto& s : subcommands()) width = std::max(width, s.name.size() + 2);
+  for (const auto& s : subcommands()) out << "  " << s.name << std::string(width - s.name.size(), ' ') << s.summary << "\n";
   out << "\n`ffsim COMMAND --help` describes a command. Exit codes: 0 success, 1 failure, 2 usage error.\n";
 }
 

@@ -20,6 +20,21 @@ TEST_CASE("cli: --version and --help") {
   CHECK(h.code == 0);
   for (const char* sub : {"replay", "diff", "bench", "bumpshadow", "profiles", "demo"})
     CHECK(h.out.find(std::string("  ") + sub) != std::string::npos);
+  // Every command's line: the name, at least two spaces, the summary (the
+  // longest name, paper-report, once ran into its summary).
+  const std::size_t list = h.out.find("commands:\n");
+  REQUIRE(list != std::string::npos);
+  std::size_t at = list + 10, lines = 0;
+  for (std::size_t end; (end = h.out.find('\n', at)) != std::string::npos && end > at; at = end + 1, ++lines) {
+    const std::string line = h.out.substr(at, end - at);
+    INFO(line);
+    REQUIRE(line.rfind("  ", 0) == 0);
+    const std::size_t gap = line.find("  ", 2);
+    CHECK(gap != std::string::npos);
+    CHECK(line.find(' ', 2) == gap);  // the name has no space; the gap follows it
+  }
+  CHECK(lines >= 10);
+  CHECK(h.out.find("  paper-report  ") != std::string::npos);
 }
 
 TEST_CASE("cli: unknown flags and subcommands are one-line errors with exit code 2") {
