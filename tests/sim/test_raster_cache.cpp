@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "fast_scene.h"
+#include "sim/raster_cache.h"
 
 using namespace ffsim;
 using namespace ffsim::test;
@@ -184,4 +185,39 @@ TEST_CASE("raster cache: a replay needs the same positions, depths and pattern o
   strip(0.25, kSame);
   CHECK(c.raster_cache().hits() == 3);
   CHECK(buffer_hashes(c) == buffer_hashes(off));
+}
+
+TEST_CASE("raster cache: keys are compared whole, and the cache stays within its byte bound") {
+  RasterCache cache;
+  auto recording = [](std::size_t depth_codes) {
+    std::vector<RasterRecording> r(1);
+    r[0].groups.emplace_back().depth.assign(depth_codes, 7u);
+    r[0].steps.push_back({false, 0});
+    return r;
+  };
+  const std::vector<std::int64_t> a{1, 2, 3}, b{1, 2, 4}, c{1, 2, 3, 0};
+  cache.insert(a, recording(10));
+  REQUIRE(cache.find(a) != nullptr);
+  CHECK(cache.find(a)->front().groups.front().depth.size() == 10);
+  CHECK(cache.find(b) == nullptr);  // one word differs
+  CHECK(cache.find(c) == nullptr);  // a prefix of another key
+  CHECK(cache.hits() == 2);
+  CHECK(cache.misses() == 2);
+  // A quarter of the bound each: the fifth insertion empties the cache first.
+  const std::size_t quarter = RasterCache::kMaxBytes / 4 / sizeof(std::uint32_t);
+  for (std::int64_t k = 0; k < 5; ++k) {
+    cache.insert({100 + k}, recording(quarter - 1000));
+    CHECK(cache.bytes() <= RasterCache::kMaxBytes);
+    CHECK(cache.find({100 + k}) != nullptr);
+  }
+  CHECK(cache.find({100}) == nullptr);  // emptied to make room
+  CHECK(cache.find(a) == nullptr);
+  // A recording over the bound is never kept (and evicts nothing).
+  const std::size_t before = cache.bytes();
+  cache.insert({999}, recording(RasterCache::kMaxBytes / sizeof(std::uint32_t) + 1));
+  CHECK(cache.find({999}) == nullptr);
+  CHECK(cache.bytes() == before);
+  cache.clear();
+  CHECK(cache.bytes() == 0);
+  CHECK(cache.find({104}) == nullptr);
 }
