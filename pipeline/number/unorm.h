@@ -23,6 +23,11 @@ constexpr std::uint32_t unorm_max(int bits) { return (std::uint32_t{1} << bits) 
 // choice: GL leaves it undefined; 0 is what a clamp with NaN-false comparisons
 // yields). +Inf -> 2^N - 1, -Inf -> 0. A float argument converts exactly to double.
 std::uint32_t unorm_from_double(double x, int bits);
+// The same for a binary32 value (unorm_from_double(double(x), bits), which is
+// exact), in 64-bit integers: a float's 24-bit significand times a code of at most
+// 24 bits fits without the 128-bit product (texture uploads convert every texel
+// component this way).
+std::uint32_t unorm_from_float(float x, int bits);
 
 // fixed -> float: the binary64 value nearest k / (2^N - 1). Converting it back with
 // unorm_from_double gives k again for every k and N <= 16 (tested exhaustively).

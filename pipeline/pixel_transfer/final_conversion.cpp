@@ -1,5 +1,7 @@
 #include "pipeline/pixel_transfer/final_conversion.h"
 
+#include <type_traits>
+
 #include "pipeline/number/unorm.h"
 #include "pipeline/pixel_transfer/pixel_state.h"
 
@@ -7,8 +9,10 @@ namespace ffsim::pixel {
 
 template <class T>
 std::uint16_t final_code(T v, int bits) {
-  // unorm_from_double clamps to [0,1] (NaN -> 0) and rounds the exact value half up.
-  return static_cast<std::uint16_t>(unorm_from_double(static_cast<double>(v), bits));
+  // unorm_from_double clamps to [0,1] (NaN -> 0) and rounds the exact value half
+  // up; unorm_from_float is the same function on binary32 values, in 64 bits.
+  if constexpr (std::is_same_v<T, float>) return static_cast<std::uint16_t>(unorm_from_float(v, bits));
+  else return static_cast<std::uint16_t>(unorm_from_double(static_cast<double>(v), bits));
 }
 
 template <class T>

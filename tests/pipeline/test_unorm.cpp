@@ -157,3 +157,42 @@ TEST_CASE("unorm: width conversion is exact whenever the source width divides th
   for (std::uint32_t k = 0; k <= 3; ++k) CHECK(unorm_convert(k, 2, 8) == k * 85);
   for (std::uint32_t k = 0; k <= 1; ++k) CHECK(unorm_convert(k, 1, 16) == k * 65535);
 }
+
+// unorm_from_float (64-bit integers) against unorm_from_double on the same value
+// (the float converts to double exactly): every width 1..24 at the floats nearest
+// each tie (k + 1/2)/(2^N − 1) and their neighbours (where a wrong shift or a
+// missing rounding bit shows), every subnormal exponent, the special values, and
+// random floats of every exponent.
+TEST_CASE("unorm: unorm_from_float equals unorm_from_double on every kind of binary32 value") {
+  long long checked = 0;
+  auto same = [&](float x, int bits) {
+    REQUIRE(unorm_from_float(x, bits) == unorm_from_double(static_cast<double>(x), bits));
+    ++checked;
+  };
+  for (int bits = 1; bits <= 24; ++bits) {
+    const double m = unorm_max(bits);
+    const std::uint32_t step = bits <= 12 ? 1 : (unorm_max(bits) >> 12) | 1;
+    for (std::uint32_t k = 0; k < unorm_max(bits); k += step) {
+      const float tie = static_cast<float>((k + 0.5) / m);
+      float lo = tie, hi = tie;
+      for (int j = 0; j < 3; ++j) {
+        same(lo, bits);
+        same(hi, bits);
+        lo = std::nextafter(lo, 0.0f);
+        hi = std::nextafter(hi, 2.0f);
+      }
+      same(static_cast<float>(k / m), bits);
+    }
+    for (const float x : {0.0f, -0.0f, 1.0f, -1.0f, 2.0f, std::nextafter(1.0f, 0.0f), std::nextafter(0.0f, 1.0f),
+                          std::numeric_limits<float>::min(), std::numeric_limits<float>::infinity(),
+                          -std::numeric_limits<float>::infinity(), std::numeric_limits<float>::quiet_NaN()})
+      same(x, bits);
+    for (int e = -149; e < 0; ++e) same(std::ldexp(1.0f, e) * 1.75f, bits);  // down through the subnormals
+  }
+  std::mt19937 rng(1124);
+  for (int k = 0; k < 400000; ++k) {
+    const float x = std::bit_cast<float>(static_cast<std::uint32_t>(rng()) & 0x3FFFFFFFu);  // [0, 2) and some above
+    same(x, 1 + k % 24);
+  }
+  CHECK(checked > 800000);
+}
