@@ -27,23 +27,6 @@ std::uint32_t unorm_from_double(double x, int bits) {
   return static_cast<std::uint32_t>(p >> s);
 }
 
-std::uint32_t unorm_from_float(float x, int bits) {
-  assert(bits >= kMinUnormBits && bits <= kMaxUnormBits);
-  const std::uint32_t m = unorm_max(bits);
-  if (std::isnan(x) || x <= 0.0f) return 0;  // as unorm_from_double
-  if (x >= 1.0f) return m;
-  // x = mant * 2^-s exactly: a normal x (biased exponent E <= 126, as x < 1) is
-  // (2^23 + fraction)·2^(E − 150), so s = 150 − E >= 24. mant·m < 2^24·2^24, so
-  // floor(x·m + 1/2) = (mant·m + 2^(s−1)) >> s in uint64 while s <= 63; for
-  // s >= 64 (E <= 86, and every subnormal) x·m < 2^(48−64), far below 1/2: 0.
-  const auto bits32 = std::bit_cast<std::uint32_t>(x);
-  const int E = static_cast<int>(bits32 >> 23);  // the sign bit is 0 here (x > 0)
-  if (E <= 86) return 0;
-  const std::uint64_t mant = (bits32 & ((1u << 23) - 1)) | (1u << 23);
-  const int s = 150 - E;
-  return static_cast<std::uint32_t>((mant * m + (std::uint64_t{1} << (s - 1))) >> s);
-}
-
 std::uint32_t unorm_convert(std::uint32_t k, int from_bits, int to_bits) {
   assert(from_bits >= kMinUnormBits && from_bits <= kMaxUnormBits);
   assert(to_bits >= kMinUnormBits && to_bits <= kMaxUnormBits);

@@ -5,6 +5,7 @@
 // (round half up; for the non-negative values involved this is also "ties away
 // from zero"). See docs/numerics.md §1 for the evidence behind the tie rule.
 #pragma once
+#include <bit>
 #include <cstdint>
 
 namespace ffsim {
@@ -25,9 +26,23 @@ constexpr std::uint32_t unorm_max(int bits) { return (std::uint32_t{1} << bits) 
 std::uint32_t unorm_from_double(double x, int bits);
 // The same for a binary32 value (unorm_from_double(double(x), bits), which is
 // exact), in 64-bit integers: a float's 24-bit significand times a code of at most
-// 24 bits fits without the 128-bit product (texture uploads convert every texel
-// component this way).
-std::uint32_t unorm_from_float(float x, int bits);
+// 24 bits fits without the 128-bit product (inline: texture uploads convert every
+// texel component with it).
+inline std::uint32_t unorm_from_float(float x, int bits) {
+  const std::uint32_t m = unorm_max(bits);
+  if (!(x > 0.0f)) return 0;  // x <= 0 or NaN, as unorm_from_double
+  if (x >= 1.0f) return m;
+  // x = mant * 2^-s exactly: a normal x (biased exponent E <= 126, as x < 1) is
+  // (2^23 + fraction)·2^(E − 150), so s = 150 − E >= 24. mant·m < 2^24·2^24, so
+  // floor(x·m + 1/2) = (mant·m + 2^(s−1)) >> s in uint64 while s <= 63; for
+  // s >= 64 (E <= 86, and every subnormal) x·m < 2^(48−64), far below 1/2: 0.
+  const auto bits32 = std::bit_cast<std::uint32_t>(x);
+  const int E = static_cast<int>(bits32 >> 23);  // the sign bit is 0 here (x > 0)
+  if (E <= 86) return 0;
+  const std::uint64_t mant = (bits32 & ((1u << 23) - 1)) | (1u << 23);
+  const int s = 150 - E;
+  return static_cast<std::uint32_t>((mant * m + (std::uint64_t{1} << (s - 1))) >> s);
+}
 
 // fixed -> float: the binary64 value nearest k / (2^N - 1). Converting it back with
 // unorm_from_double gives k again for every k and N <= 16 (tested exhaustively).

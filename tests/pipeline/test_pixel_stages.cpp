@@ -432,3 +432,22 @@ TEST_CASE("pixel mixed-width sized texture formats round each component at its o
   t = make_texture_image(img, gl::RGBA4, *texture_internal_format(gl::RGBA4), 0, p);
   CHECK(t.codes[3] == 9);
 }
+
+// Every byte of both one-byte types through unpack_rgba (which looks them up in a
+// table of 256) against GL121 Table 2.6 written out here: c/255 for UNSIGNED_BYTE,
+// (2c + 1)/255 for BYTE, each one division in T, compared bit for bit.
+TEST_CASE_TEMPLATE("pixel unpack: every UNSIGNED_BYTE and BYTE value is Table 2.6's conversion", T, float, double) {
+  std::vector<std::uint8_t> bytes(256);
+  for (int b = 0; b < 256; ++b) bytes[static_cast<std::size_t>(b)] = static_cast<std::uint8_t>(b);
+  PixelStoreModes m;
+  m.alignment = 1;
+  const RgbaImage<T> u = unpack_rgba<T>(bytes.data(), 256, 1, gl::ALPHA, gl::UNSIGNED_BYTE, m);
+  const RgbaImage<T> s = unpack_rgba<T>(bytes.data(), 256, 1, gl::ALPHA, gl::BYTE, m);
+  for (int b = 0; b < 256; ++b) {
+    const T eu = static_cast<T>(b) / T(255);
+    const T es = static_cast<T>(2 * static_cast<std::int8_t>(b) + 1) / T(255);
+    CHECK(std::memcmp(&u.px[4 * static_cast<std::size_t>(b) + 3], &eu, sizeof(T)) == 0);
+    CHECK(std::memcmp(&s.px[4 * static_cast<std::size_t>(b) + 3], &es, sizeof(T)) == 0);
+    CHECK(u.px[4 * static_cast<std::size_t>(b)] == T(0));  // R, G, B of ALPHA data: 0
+  }
+}
