@@ -156,6 +156,18 @@ FragmentConstants fragment_constants(const FragmentOpsState& s, const FragmentTa
     k.blend_color_code[c] = unorm_from_double(v, t.color_bits);
     k.blend_color_value[c] = t.arith == Arithmetic::Float32 ? static_cast<double>(static_cast<float>(v)) : v;
   }
+  const FragmentPlanKey key = fragment_plan_key(s, t);
+  if (key.stencil && t.stencil_bits > 0 && t.stencil_bits <= 8) {
+    FragmentConstants::StencilTables& st = k.stencil_tables;
+    st = {true, key.stencil_func, key.sfail, key.dpfail, key.dppass, {}, {}, {}, {}};
+    const std::uint32_t ref_m = k.stencil_ref & k.stencil_value_mask;
+    for (std::uint32_t v = 0; v < 256; ++v) {  // the per-fragment rules of stencil_depth_stage
+      st.pass[v] = test_func<std::uint32_t>(key.stencil_func, ref_m, v & k.stencil_value_mask) ? 1 : 0;
+      st.after_sfail[v] = static_cast<std::uint8_t>(stencil_write(key.sfail, v, k.stencil_ref, k.stencil_max, k.stencil_writemask));
+      st.after_dpfail[v] = static_cast<std::uint8_t>(stencil_write(key.dpfail, v, k.stencil_ref, k.stencil_max, k.stencil_writemask));
+      st.after_dppass[v] = static_cast<std::uint8_t>(stencil_write(key.dppass, v, k.stencil_ref, k.stencil_max, k.stencil_writemask));
+    }
+  }
   return k;
 }
 
@@ -632,6 +644,31 @@ void stencil_depth_stage(const FragmentPlanKey& key, const FragmentConstants& k,
     return;
   }
   // The stencil test, then the depth test if enabled, with the stencil operations.
+  const FragmentConstants::StencilTables& st = k.stencil_tables;
+  if (st.valid && st.func == key.stencil_func && st.sfail == key.sfail && st.dpfail == key.dpfail &&
+      st.dppass == key.dppass) {
+    // The same rules looked up by stored value (no switch per fragment).
+    for (int j = 0; j < n; ++j) {
+      if (!alive[j]) continue;
+      const std::size_t p = pixel(j);
+      const std::uint8_t old = b.stencil[p];
+      if (!st.pass[old]) {
+        b.stencil[p] = st.after_sfail[old];
+        alive[j] = 0;
+        continue;
+      }
+      if (key.depth) {
+        if (!test_func<std::uint32_t>(key.depth_func, z[j], b.depth[p])) {
+          b.stencil[p] = st.after_dpfail[old];
+          alive[j] = 0;
+          continue;
+        }
+        if (key.depth_write) b.depth[p] = z[j];
+      }
+      b.stencil[p] = st.after_dppass[old];
+    }
+    return;
+  }
   const std::uint32_t ref = k.stencil_ref, vm = k.stencil_value_mask, wm = k.stencil_writemask, smax = k.stencil_max;
   const std::uint32_t ref_m = ref & vm;
   for (int j = 0; j < n; ++j) {

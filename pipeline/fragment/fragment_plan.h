@@ -108,6 +108,17 @@ struct FragmentConstants {
   std::array<std::uint32_t, 4> blend_color_code{0, 0, 0, 0};
   std::array<double, 4> blend_color_value{0, 0, 0, 0};  // binary32-rounded for Float32
   std::array<double, 4> blend_color_given{0, 0, 0, 0};
+  // The stencil test and operations of the plan key built from the same state,
+  // tabulated over all 256 stored values (fragment_constants; valid when the key
+  // has the stencil test and a stencil buffer of at most 8 bits): pass[v] is the
+  // test's result for stored value v, after_*[v] the value then written (through
+  // the write mask). The fragment operations use them when the plan's function and
+  // operations are these (else they compute per fragment; the same values).
+  struct StencilTables {
+    bool valid = false;
+    GLenum func = 0, sfail = 0, dpfail = 0, dppass = 0;
+    std::array<std::uint8_t, 256> pass{}, after_sfail{}, after_dpfail{}, after_dppass{};
+  } stencil_tables;
 };
 
 struct FragmentPlan {
