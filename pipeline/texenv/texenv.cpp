@@ -403,13 +403,28 @@ bool combine_dot3_span_8(const TexEnvState& env, const std::uint16_t* previous, 
     const auto q = static_cast<std::uint32_t>(2 * std::max(N, 0) * m + m2) / static_cast<std::uint32_t>(2 * m2);
     return static_cast<std::uint16_t>(std::min<std::uint32_t>(q, m));
   };
+  // One argument the constant colour (a light vector, as in the paper's bump
+  // mapping): its three factors (2k − m) once, the other argument from the span.
+  const bool const1 = s1.stride == 0, const0 = s0.stride == 0 && !const1;
+  const Source sv = const0 ? s1 : s0;  // the argument that varies (or s0)
+  const bool av = const0 ? a1 : a0;
+  const std::int32_t iv = const0 ? i1 : i0;
+  std::int32_t K[3] = {0, 0, 0};
+  if (const0 || const1)
+    for (int c = 0; c < 3; ++c)
+      K[c] = const0 ? 2 * operand(s0.base[a0 ? 3 : c], i0) - m : 2 * operand(s1.base[a1 ? 3 : c], i1) - m;
   for (int f = 0; f < n; ++f) {
     const std::uint16_t* x = s0.base + s0.stride * static_cast<std::size_t>(f);
     const std::uint16_t* y = s1.base + s1.stride * static_cast<std::size_t>(f);
     const std::uint16_t* z = sa.base + sa.stride * static_cast<std::size_t>(f);
     std::int32_t d = 0;  // Σ (2k0 − m)(2k1 − m), |d| <= 3m²
-    for (int c = 0; c < 3; ++c)
-      d += (2 * operand(x[a0 ? 3 : c], i0) - m) * (2 * operand(y[a1 ? 3 : c], i1) - m);
+    if (const0 || const1) {  // (the same products, the constant side precomputed)
+      const std::uint16_t* w = sv.base + sv.stride * static_cast<std::size_t>(f);
+      for (int c = 0; c < 3; ++c) d += (2 * operand(w[av ? 3 : c], iv) - m) * K[c];
+    } else {
+      for (int c = 0; c < 3; ++c)
+        d += (2 * operand(x[a0 ? 3 : c], i0) - m) * (2 * operand(y[a1 ? 3 : c], i1) - m);
+    }
     const std::uint16_t v = finish_m2(ext ? d : d * srgb);
     const std::uint16_t alpha = rgba ? finish_m2(ext ? d : d * salpha)
                                      : static_cast<std::uint16_t>(std::min(salpha * operand(z[3], ia), m));
