@@ -422,7 +422,7 @@ class Context {
   // generic per-fragment path. Results are identical either way; the
   // tests/*/test_fast_*.cpp tests draw random scenes both ways and compare.
   void set_fast_paths(bool on) { fast_paths_ = on; }
-  // The raster cache (sim/raster_cache.h, docs/performance.md 13.1): a glEnd's
+  // The raster cache (sim/raster_cache.h, docs/performance.md 13.2): a glEnd's
   // triangles drawn again at the same window positions and depths replay the
   // runs, groups and depth codes of the first time instead of rasterizing again
   // (span path only; on by default). Off: every draw is rasterized.

@@ -1,4 +1,4 @@
-// The raster cache in the draw path (sim/raster_cache.h, docs/performance.md 13.1):
+// The raster cache in the draw path (sim/raster_cache.h, docs/performance.md 13.2):
 // a sequence of triangles is rasterized and recorded the first time, replayed
 // when the same key comes again.
 //
@@ -7,9 +7,9 @@
 // kGroupFragments fragments, when coords_reuse_mask changes, or before a long
 // run) depends only on the triangles' snapped positions, which of them have
 // equal coords_reuse_masks, the rows and the window, and starts from an empty
-// group. The depth codes of a
-// group depend on its runs and the vertices' depth codes. All of these are the
-// key, so the replay's groups, long runs and depth codes are the rasterizer's.
+// group. A group's depth codes depend on its runs and the vertices' depth codes,
+// its pixel list on its runs and the window width. All of these are the key, so
+// the replay's groups, long runs, depth codes and pixel lists are the rasterizer's.
 #include <array>
 #include <utility>
 

@@ -1,4 +1,4 @@
-// The raster cache (docs/performance.md 13.1): what the span path's rasterizer
+// The raster cache (docs/performance.md 13.2): what the span path's rasterizer
 // and grouping produced for a sequence of triangles, kept so that the same
 // sequence drawn again (the next pass of a multipass algorithm over the same
 // mesh) is not rasterized again.
