@@ -98,7 +98,7 @@ void draw_multipass(Context& c, std::uint32_t seed, int passes) {
 }  // namespace
 
 TEST_CASE("raster cache: multipass meshes replayed == rasterized again == per-fragment path, 1 and 2 threads") {
-  std::uint64_t hits = 0, misses = 0;
+  std::uint64_t hits = 0, misses = 0, scenes = 0;
   for (const char* profile : {"geforce256", "rgba12"})
     for (int threads : {1, 2})
 #ifdef FFSIM_SANITIZE
@@ -120,11 +120,16 @@ TEST_CASE("raster cache: multipass meshes replayed == rasterized again == per-fr
         CHECK(cached.span_group_stats().joined == uncached.span_group_stats().joined);
         CHECK(cached.span_group_stats().met == uncached.span_group_stats().met);
         CHECK(uncached.raster_cache().hits() == 0);
+        ++scenes;
         hits += cached.raster_cache().hits();
         misses += cached.raster_cache().misses();
       }
-  CHECK(hits > 100);   // replays happened
-  CHECK(misses > 50);  // and first sightings, depth moves, new coordinates
+  // Replays happened, and first sightings, depth moves, new coordinates (about
+  // 3 and 2 per scene with these seeds: passes whose textures take the
+  // per-fragment path, e.g. mipmaps, do not use the cache).
+  MESSAGE("scenes " << scenes << ", hits " << hits << ", misses " << misses);
+  CHECK(hits >= 2 * scenes);
+  CHECK(misses >= scenes);
 }
 
 TEST_CASE("raster cache: a replay needs the same positions, depths and pattern of coordinate sharing") {
