@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,7 @@
 #include "pipeline/geometry/matrix_stack.h"
 #include "pipeline/gl/enums.h"
 #include "pipeline/number/profile.h"
+#include "pipeline/pixel_transfer/byte_texels.h"
 #include "pipeline/pixel_transfer/pixel_image.h"
 #include "pipeline/pixel_transfer/pixel_state.h"
 #include "pipeline/pixel_transfer/transfer_plan.h"
@@ -506,6 +508,9 @@ class Context {
   // are known (fixed profiles): row m's 4·width codes from row_codes(m, to).
   template <class RowCodes>
   void emit_color_code_rows(int width, int height, RowCodes row_codes);
+  template <class T>
+  std::optional<pixel::ByteTexelTables> byte_texel_tables(int dims, GLenum format, GLenum type,
+                                                          const TextureImage& shape) const;
   template <class T>
   bool tex_image(const char* fn, int dims, GLenum target, int level, GLenum internalformat, int width, int height,
                  int border, GLenum format, GLenum type, const void* data, const int* copy_xy);

@@ -3,8 +3,10 @@
 // plan, then conversion to the internal format (§3.8.1, Table 3.15) into the
 // TextureImage levels of the bound texture object.
 #include <algorithm>
+#include <optional>
 
 #include "pipeline/gl/enum_names.h"
+#include "pipeline/pixel_transfer/byte_texels.h"
 #include "pipeline/pixel_transfer/final_conversion.h"
 #include "pipeline/pixel_transfer/formats.h"
 #include "pipeline/pixel_transfer/unpack.h"
@@ -33,6 +35,21 @@ bool check_client_format(Context& ctx, const char* fn, GLenum format, GLenum typ
   return true;
 }
 }  // namespace
+
+// One-byte client data through a component-wise transfer plan (fixed profiles,
+// the fast paths): the tables that give the codes of a level shaped like `shape`
+// (pipeline/pixel_transfer/byte_texels.h; the same bits as unpack, transfer and
+// store_texels). Nothing when the path does not apply.
+template <class T>
+std::optional<pixel::ByteTexelTables> Context::byte_texel_tables(int dims, GLenum format, GLenum type,
+                                                                 const TextureImage& shape) const {
+  if (!fast_paths_ || !profile_.is_fixed() || (type != gl::UNSIGNED_BYTE && type != gl::BYTE)) return std::nullopt;
+  const pixel::TransferInputs in = transfer_inputs();
+  const pixel::TransferPlan plan =
+      pixel::plan_transfer(in, dims == 1 ? pixel::ImageDims::OneD : pixel::ImageDims::TwoD);
+  if (!pixel::plan_is_componentwise(plan)) return std::nullopt;
+  return pixel::byte_texel_tables<T>(format, type, plan, in, shape, profile_);
+}
 
 template <class T>
 bool Context::tex_image(const char* fn, int dims, GLenum target, int level, GLenum internalformat, int width,
@@ -82,6 +99,16 @@ bool Context::tex_image(const char* fn, int dims, GLenum target, int level, GLen
       return true;
     }
   }
+  if (data && !copy_xy && ow > 0 && oh > 0) {
+    TextureImage shape = pixel::texture_level(0, 0, internalformat, *f, border, profile_);
+    if (const auto tab = byte_texel_tables<T>(dims, format, type, shape)) {
+      TextureImage& ti = level_image();
+      ti = pixel::texture_level(ow, oh, internalformat, *f, border, profile_);
+      pixel::store_byte_texels(*tab, data, width, height, pixel_store_.unpack, ti, 0, 0);
+      if (!key.empty()) upload_cache_.insert(std::move(key), ti);
+      return true;
+    }
+  }
   RgbaImage<T> img;
   if (copy_xy) img = read_color_rect<T>(copy_xy[0], copy_xy[1], width, height);
   else if (data) img = pixel::unpack_rgba<T>(data, width, height, format, type, pixel_store_.unpack);
@@ -119,6 +146,13 @@ bool Context::tex_sub_image(const char* fn, int dims, GLenum target, int level, 
                                             std::to_string(xoffset) + ", " + std::to_string(yoffset) +
                                             ") is outside the level");
   if (!copy_xy && !data && ow > 0 && oh > 0) return error(gl::INVALID_VALUE, fn, "no image data");
+  if (!copy_xy && ow > 0 && oh > 0)
+    if (const auto tab = byte_texel_tables<T>(dims, format, type, ti)) {
+      pixel::store_byte_texels(*tab, data, width, height, pixel_store_.unpack, ti, xoffset + b,
+                               dims == 1 ? 0 : yoffset + b);
+      ++obj.version;
+      return true;
+    }
   RgbaImage<T> img = copy_xy ? read_color_rect<T>(copy_xy[0], copy_xy[1], width, height)
                              : pixel::unpack_rgba<T>(data, width, height, format, type, pixel_store_.unpack);
   img = transfer(std::move(img), idims);

@@ -49,19 +49,26 @@ void store_texels(const RgbaImage<T>& img, TextureImage& dst, int x0, int y0, co
     }
 }
 
-template <class T>
-TextureImage make_texture_image(const RgbaImage<T>& img, GLenum internal_format, const InternalFormat& f,
-                                int border, const Profile& p) {
+TextureImage texture_level(int width, int height, GLenum internal_format, const InternalFormat& f, int border,
+                           const Profile& p) {
   TextureImage t;
-  t.width = img.width;
-  t.height = img.height;
+  t.width = width;
+  t.height = height;
   t.border = border;
   t.internal_format = internal_format;
   t.base = f.base;
   t.bits = texture_storage_bits(f, p);
-  const std::size_t n = img.size() * static_cast<std::size_t>(component_count(f.base));
+  const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height) *
+                        static_cast<std::size_t>(component_count(f.base));
   if (p.is_fixed()) t.codes.assign(n, 0);
   else t.values.assign(n, 0.0);
+  return t;
+}
+
+template <class T>
+TextureImage make_texture_image(const RgbaImage<T>& img, GLenum internal_format, const InternalFormat& f,
+                                int border, const Profile& p) {
+  TextureImage t = texture_level(img.width, img.height, internal_format, f, border, p);
   store_texels(img, t, 0, 0, p);
   return t;
 }

@@ -23,6 +23,11 @@ double final_value(T v, Arithmetic a);
 // Component width a texture image of format f gets under profile p.
 int texture_storage_bits(const InternalFormat& f, const Profile& p);
 
+// A new width x height level (border texels included) of internal format f,
+// every component 0.
+TextureImage texture_level(int width, int height, GLenum internal_format, const InternalFormat& f, int border,
+                           const Profile& p);
+
 // A new texture level from the transferred image (border texels included in
 // img: width = w_s + 2*border). Components picked by base format: ALPHA <- A,
 // LUMINANCE <- R, LUMINANCE_ALPHA <- R, A, INTENSITY <- R, RGB <- R, G, B,

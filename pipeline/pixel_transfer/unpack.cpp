@@ -145,6 +145,13 @@ std::uint64_t floor_scaled(double f, std::uint64_t m, bool round_half) {
 
 }  // namespace
 
+int format_element_for(GLenum format, int rgba) {
+  const FormatMap fm = format_map(format);
+  for (int k = 0; k < fm.n; ++k)
+    if (fm.slot[k] == rgba || (fm.luminance && k == 0 && rgba < 3)) return k;
+  return -1;
+}
+
 std::uint32_t pack_unsigned(double f, int bits) {
   const std::uint64_t m = (std::uint64_t{1} << bits) - 1;
   if (!(f > 0.0)) return 0;  // clamp (and NaN -> 0)

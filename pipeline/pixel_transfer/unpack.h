@@ -39,6 +39,11 @@ template <class T>
 RgbaImage<T> unpack_rgba(const void* data, int width, int height, GLenum format, GLenum type,
                          const PixelStoreModes& modes);
 
+// The client element (0-based, within a group of `format`) that fills RGBA
+// component `rgba` when unpacking (LUMINANCE's element fills R, G and B), or -1
+// when none does (the component is then the constant 0, or 1 for A).
+int format_element_for(GLenum format, int rgba);
+
 // One-component data (STENCIL_INDEX, DEPTH_COMPONENT). Stencil: integer values
 // (FLOAT elements rounded half up, negative -> 0 after rounding); depth: [0,1]
 // conversion as for colour elements.

@@ -3,6 +3,8 @@
 // pixel-state changes and glTexImage1D/2D calls; every upload must store the same
 // level bit for bit, whether the cache hit or not. The sequence re-uploads
 // earlier images often (hits) and changes one input at a time (which must miss).
+// Misses and sub-images of one-byte data take the table path of
+// pipeline/pixel_transfer/byte_texels.h when the transfer is component-wise.
 #include <doctest/doctest.h>
 
 #include <cstdint>
@@ -66,6 +68,7 @@ void random_sequence(const std::string& profile_name, std::uint32_t seed, int st
     GLenum format, internal;
     int level;
     bool one_d;
+    GLenum type;
   } call{};
   for (int step = 0; step < steps; ++step) {
     CAPTURE(step);
@@ -121,19 +124,28 @@ void random_sequence(const std::string& profile_name, std::uint32_t seed, int st
         break;
       }
       default: {  // an upload (most steps): half of them repeat the previous call
-        if (uploads == 0 || pick(2) == 0) call = {pick(3), formats[pick(4)], internals[pick(6)], pick(2), pick(4) == 0};
+        if (uploads == 0 || pick(2) == 0)
+          call = {pick(3), formats[pick(4)], internals[pick(6)], pick(2), pick(4) == 0,
+                  pick(3) == 0 ? gl::BYTE : gl::UNSIGNED_BYTE};
         const auto& im = images[static_cast<std::size_t>(call.image)];
         const GLenum fmt = call.format, internal = call.internal;
         const int level = call.level, side = level == 0 ? 16 : 8;
         const bool one_d = call.one_d;
         if (one_d) {
-          p.both([&](Context& c) { c.texImage1D(gl::TEXTURE_1D, level, internal, side, 0, fmt, gl::UNSIGNED_BYTE, im.data()); });
+          p.both([&](Context& c) { c.texImage1D(gl::TEXTURE_1D, level, internal, side, 0, fmt, call.type, im.data()); });
           check_same_level(p.cached, p.reference, gl::TEXTURE_1D, level);
         } else {
           p.both([&](Context& c) {
-            c.texImage2D(gl::TEXTURE_2D, level, internal, side, side, 0, fmt, gl::UNSIGNED_BYTE, im.data());
+            c.texImage2D(gl::TEXTURE_2D, level, internal, side, side, 0, fmt, call.type, im.data());
           });
           check_same_level(p.cached, p.reference, gl::TEXTURE_2D, level);
+          if (pick(2) == 0) {  // a sub-image (not cached; one-byte data by table with the fast paths)
+            const int x = pick(side), y = pick(side), w = 1 + pick(side - x), h = 1 + pick(side - y);
+            const auto& sub = images[static_cast<std::size_t>(pick(3))];
+            const GLenum sub_fmt = formats[pick(4)], sub_type = pick(2) ? gl::BYTE : gl::UNSIGNED_BYTE;
+            p.both([&](Context& c) { c.texSubImage2D(gl::TEXTURE_2D, level, x, y, w, h, sub_fmt, sub_type, sub.data()); });
+            check_same_level(p.cached, p.reference, gl::TEXTURE_2D, level);
+          }
         }
         ++uploads;
         break;
