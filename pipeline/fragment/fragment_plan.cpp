@@ -507,6 +507,31 @@ void color_stage_fixed(const FragmentPlan& plan, const FragmentConstants& k, con
   }
   FixedKernel<kM> kern;
   kern.M = k.color_max;
+  // One written channel c (the paper's alpha-only passes): FixedKernel::channel and
+  // its factors read only channel c and alpha of the source and the destination,
+  // so only those are de-interleaved, and only channel c is stored (the same
+  // values; the other channels are kept as the write mask keeps them).
+  int written = -1, count = 0;
+  for (int c = 0; c < 4; ++c)
+    if (plan.key.channel[c] != ChannelOp::Keep) written = c, ++count;
+  if (count == 1) {
+    const int c = written;
+    for (int j = 0; j < n; ++j) {
+      kern.src[c][j] = in[4 * j + c];
+      kern.src[3][j] = in[4 * j + 3];
+    }
+    if (plan.read_dst_color)
+      for (int j = 0; j < n; ++j) {
+        const std::uint16_t* px = fb + 4 * pixel(j);
+        kern.dst[c][j] = px[c];
+        kern.dst[3][j] = px[3];
+      }
+    std::uint32_t out[kChunk];
+    kern.channel(plan.key, k.blend_color_code.data(), c, n, out);
+    for (int j = 0; j < n; ++j)
+      if (alive[j]) fb[4 * pixel(j) + static_cast<std::size_t>(c)] = static_cast<std::uint16_t>(out[j]);
+    return;
+  }
   int j1 = 0;
 #ifdef __SSE4_1__
   // Four pixels' codes at a time transposed to the four channel arrays.
