@@ -413,24 +413,54 @@ bool combine_dot3_span_8(const TexEnvState& env, const std::uint16_t* previous, 
   if (const0 || const1)
     for (int c = 0; c < 3; ++c)
       K[c] = const0 ? 2 * operand(s0.base[a0 ? 3 : c], i0) - m : 2 * operand(s1.base[a1 ? 3 : c], i1) - m;
-  for (int f = 0; f < n; ++f) {
-    const std::uint16_t* x = s0.base + s0.stride * static_cast<std::size_t>(f);
-    const std::uint16_t* y = s1.base + s1.stride * static_cast<std::size_t>(f);
-    const std::uint16_t* z = sa.base + sa.stride * static_cast<std::size_t>(f);
-    std::int32_t d = 0;  // Σ (2k0 − m)(2k1 − m), |d| <= 3m²
-    if (const0 || const1) {  // (the same products, the constant side precomputed)
+  // 2·operand(v) − m = ±(2v − m): an inverted operand (m − v) only negates its
+  // factor, so the two inversions are one sign on the sum. The sum, then the
+  // codes; alpha REPLACE in a second loop (out may alias `previous`, whose alpha
+  // the first loop does not write unless the dot product goes to alpha too).
+  const std::int32_t sign = i0 != i1 ? -1 : 1;
+  const std::int32_t scale_rgb = ext ? 1 : srgb, scale_alpha = ext ? 1 : salpha;
+  auto put = [&](int f, std::int32_t d) {
+    std::uint16_t* o = out + 4 * static_cast<std::size_t>(f);
+    o[0] = o[1] = o[2] = finish_m2(d * scale_rgb);
+    if (rgba) o[3] = finish_m2(d * scale_alpha);
+  };
+  if (!const0 && !const1 && !a0 && !a1 && s0.stride == 4 && s1.stride == 4) {
+    // Both arguments vary, colour operands (the paper's bump map against the
+    // interpolated light vector).
+    const std::uint16_t* x = s0.base;
+    const std::uint16_t* y = s1.base;
+    for (int f = 0; f < n; ++f, x += 4, y += 4) {
+      const std::int32_t d = (2 * x[0] - m) * (2 * y[0] - m) + (2 * x[1] - m) * (2 * y[1] - m) +
+                             (2 * x[2] - m) * (2 * y[2] - m);
+      put(f, sign * d);
+    }
+  } else if (const0 || const1) {  // (the same products, the constant side precomputed)
+    for (int f = 0; f < n; ++f) {
       const std::uint16_t* w = sv.base + sv.stride * static_cast<std::size_t>(f);
+      std::int32_t d = 0;
       for (int c = 0; c < 3; ++c) d += (2 * operand(w[av ? 3 : c], iv) - m) * K[c];
-    } else {
+      put(f, d);
+    }
+  } else {
+    for (int f = 0; f < n; ++f) {
+      const std::uint16_t* x = s0.base + s0.stride * static_cast<std::size_t>(f);
+      const std::uint16_t* y = s1.base + s1.stride * static_cast<std::size_t>(f);
+      std::int32_t d = 0;  // Σ (2k0 − m)(2k1 − m), |d| <= 3m²
       for (int c = 0; c < 3; ++c)
         d += (2 * operand(x[a0 ? 3 : c], i0) - m) * (2 * operand(y[a1 ? 3 : c], i1) - m);
+      put(f, d);
     }
-    const std::uint16_t v = finish_m2(ext ? d : d * srgb);
-    const std::uint16_t alpha = rgba ? finish_m2(ext ? d : d * salpha)
-                                     : static_cast<std::uint16_t>(std::min(salpha * operand(z[3], ia), m));
-    std::uint16_t* o = out + 4 * static_cast<std::size_t>(f);
-    o[0] = o[1] = o[2] = v;
-    o[3] = alpha;
+  }
+  if (!rgba) {
+    if (sa.stride == 0) {
+      const auto alpha = static_cast<std::uint16_t>(std::min(salpha * operand(sa.base[3], ia), m));
+      for (int f = 0; f < n; ++f) out[4 * static_cast<std::size_t>(f) + 3] = alpha;
+    } else {
+      for (int f = 0; f < n; ++f) {
+        const std::size_t o = 4 * static_cast<std::size_t>(f) + 3;
+        out[o] = static_cast<std::uint16_t>(std::min(salpha * operand(sa.base[o], ia), m));
+      }
+    }
   }
   return true;
 }
