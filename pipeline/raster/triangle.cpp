@@ -1,12 +1,19 @@
 #include "pipeline/raster/triangle.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 namespace ffsim {
 
 std::int64_t snap_coordinate(double v, int subpixel_bits) {
-  const double s = std::floor(std::ldexp(v, subpixel_bits) + 0.5);
+  // v·2^S as a multiplication by the exact power 2^S (0 <= S <= 1023): the value
+  // ldexp gives (one correctly rounded result, ±inf beyond the range), without
+  // the library call per coordinate.
+  const double scaled = subpixel_bits >= 0 && subpixel_bits <= 1023
+                            ? v * std::bit_cast<double>(static_cast<std::uint64_t>(1023 + subpixel_bits) << 52)
+                            : std::ldexp(v, subpixel_bits);
+  const double s = std::floor(scaled + 0.5);
   if (!(s > -static_cast<double>(kMaxSnapped) * 4 && s < static_cast<double>(kMaxSnapped) * 4))
     return s < 0 ? -kMaxSnapped * 4 : kMaxSnapped * 4;  // out of range (also NaN): rejected by the rasterizer
   return static_cast<std::int64_t>(s);

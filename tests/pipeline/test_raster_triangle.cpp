@@ -3,7 +3,10 @@
 // rule "centre inside, or on a left or top edge" on the 1/16-pixel grid.
 #include <doctest/doctest.h>
 
+#include <bit>
 #include <cmath>
+#include <random>
+#include <vector>
 #include <map>
 #include <set>
 
@@ -38,6 +41,31 @@ TEST_CASE("raster: snapping rounds to the nearest 1/16 pixel, ties up") {
   CHECK(snap_coordinate(1.03125, 4) == 17);   // 16.5 exactly -> 17 (half up)
   CHECK(snap_coordinate(-1.03125, 4) == -16); // -16.5 -> -16 (half up)
   CHECK(snap_coordinate(std::nan(""), 4) > kMaxSnapped);  // NaN is out of range: rejected
+}
+
+TEST_CASE("raster: snapping is floor(ldexp(v, S) + 1/2) for every S, value and special case") {
+  // The rule of triangle.h computed independently (std::ldexp), against
+  // snap_coordinate's exact power-of-two multiplication.
+  auto rule = [](double v, int S) {
+    const double s = std::floor(std::ldexp(v, S) + 0.5);
+    if (!(s > -static_cast<double>(kMaxSnapped) * 4 && s < static_cast<double>(kMaxSnapped) * 4))
+      return s < 0 ? -kMaxSnapped * 4 : kMaxSnapped * 4;
+    return static_cast<std::int64_t>(s);
+  };
+  std::mt19937_64 rng(31);
+  std::vector<double> values = {0.0, -0.0, 0.5, -0.5, 1e-320, -1e-320, 1e300, -1e300, std::nan(""),
+                                INFINITY, -INFINITY, 0x1p27, -0x1p27, 0x1p28 - 0.5, 1.0 / 3};
+  for (int i = 0; i < 20000; ++i) {
+    const double mag = std::ldexp(1.0, static_cast<int>(rng() % 80) - 40);
+    values.push_back((static_cast<double>(rng() % 2000001) / 1e6 - 1.0) * mag);  // both signs, ties included
+    values.push_back(std::bit_cast<double>(rng()));                               // any bit pattern
+  }
+  for (int S = 0; S <= 20; ++S)
+    for (const double v : values) {
+      CAPTURE(S);
+      CAPTURE(v);
+      REQUIRE(snap_coordinate(v, S) == rule(v, S));
+    }
 }
 
 TEST_CASE("raster: a 2x2 square on integer corners covers exactly its four pixels") {
