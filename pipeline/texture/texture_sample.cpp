@@ -587,6 +587,70 @@ void span_linear_repeat(const SpanLevel& L, const double* s, const double* t, in
       continue;
     }
     fill_y();
+#ifdef __AVX2__
+    if constexpr (NC == 4 || NC == 3) {
+      // Two fragments per 256-bit register (four 32-bit lanes each), the same
+      // integers as below: the four weights and texel offsets of every fragment
+      // first (a loop the compiler vectorises), then per pair four loads, four
+      // products and one rounding; the codes packed back to 16 bits (< 2^16).
+      // RGB: a texel is loaded as four codes, the fourth (the next texel's R)
+      // lands in the alpha lane, which is then set to 1; unless a load would
+      // read past the image (its last texel), then the chunk takes the loop below.
+      alignas(32) std::uint32_t w00[kAxisChunk], w10[kAxisChunk], w01[kAxisChunk], w11[kAxisChunk];
+      alignas(32) std::uint32_t o00[kAxisChunk], o10[kAxisChunk], o01[kAxisChunk], o11[kAxisChunk];
+      const auto Wb = static_cast<std::uint32_t>(W), ub = static_cast<std::uint32_t>(b);
+      std::uint32_t last = 0;  // the largest offset
+      for (int f = 0; f < m; ++f) {
+        const std::uint32_t a = wx[f], bb = wy[f];
+        w00[f] = (one - a) * (one - bb);
+        w10[f] = a * (one - bb);
+        w01[f] = (one - a) * bb;
+        w11[f] = a * bb;
+        const std::uint32_t r0 = (static_cast<std::uint32_t>(y0[f]) + ub) * Wb + ub;
+        const std::uint32_t r1 = (static_cast<std::uint32_t>(y1[f]) + ub) * Wb + ub;
+        o00[f] = NC * (r0 + static_cast<std::uint32_t>(x0[f]));
+        o10[f] = NC * (r0 + static_cast<std::uint32_t>(x1[f]));
+        o01[f] = NC * (r1 + static_cast<std::uint32_t>(x0[f]));
+        o11[f] = NC * (r1 + static_cast<std::uint32_t>(x1[f]));
+        last = std::max({last, o00[f], o10[f], o01[f], o11[f]});
+      }
+      if (NC == 4 || static_cast<std::size_t>(last) + 4 <= im.codes.size()) {
+        const __m256i vhalf = _mm256_set1_epi32(static_cast<int>(half));
+        const __m128i shift = _mm_cvtsi32_si128(B2);
+        auto pair = [&](const std::uint32_t* off, int f) {  // texels of fragments f, f + 1 as 8 lanes
+          const __m128i lo = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(codes + off[f]));
+          const __m128i both = _mm_castpd_si128(
+              _mm_loadh_pd(_mm_castsi128_pd(lo), reinterpret_cast<const double*>(codes + off[f + 1])));
+          return _mm256_cvtepu16_epi32(both);
+        };
+        auto weight = [](const std::uint32_t* w, int f) {  // w[f] in lanes 0-3, w[f + 1] in lanes 4-7
+          return _mm256_set_m128i(_mm_set1_epi32(static_cast<int>(w[f + 1])), _mm_set1_epi32(static_cast<int>(w[f])));
+        };
+        int f = 0;
+        for (; f + 2 <= m; f += 2, o += 8) {
+          __m256i sum = _mm256_mullo_epi32(pair(o00, f), weight(w00, f));
+          sum = _mm256_add_epi32(sum, _mm256_mullo_epi32(pair(o10, f), weight(w10, f)));
+          sum = _mm256_add_epi32(sum, _mm256_mullo_epi32(pair(o01, f), weight(w01, f)));
+          sum = _mm256_add_epi32(sum, _mm256_mullo_epi32(pair(o11, f), weight(w11, f)));
+          const __m256i r = _mm256_srl_epi32(_mm256_add_epi32(sum, vhalf), shift);
+          const __m256i packed = _mm256_packus_epi32(r, r);  // per 128-bit lane: the fragment's codes twice
+          __m128i codes2 = _mm256_castsi256_si128(_mm256_permute4x64_epi64(packed, 0x08));  // qwords 0 and 2
+          if constexpr (NC == 3) {  // RGB: (R, G, B, 1)
+            codes2 = _mm_insert_epi16(codes2, static_cast<int>(L.one_code), 3);
+            codes2 = _mm_insert_epi16(codes2, static_cast<int>(L.one_code), 7);
+          }
+          _mm_storeu_si128(reinterpret_cast<__m128i*>(o), codes2);
+        }
+        for (; f < m; ++f, o += 4) {
+          const std::uint16_t *t00 = codes + o00[f], *t10 = codes + o10[f], *t01 = codes + o01[f], *t11 = codes + o11[f];
+          for (int c = 0; c < NC; ++c)
+            k[c] = (t00[c] * w00[f] + t10[c] * w10[f] + t01[c] * w01[f] + t11[c] * w11[f] + half) >> B2;
+          store(o, k);
+        }
+        continue;
+      }
+    }
+#endif
 #ifdef __SSE4_1__
     if constexpr (NC == 4 || NC == 3) {  // the components in one 128-bit register, the same integers
       const __m128i vhalf = _mm_set1_epi32(static_cast<int>(half));
