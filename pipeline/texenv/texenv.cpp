@@ -364,9 +364,9 @@ struct CombineInt {
 // switches and branches. Sources and operands are chosen once (a source is a
 // pointer and a stride: 4 codes per fragment, 0 for the constant colour), and
 // finish(N, m²) is computed branch free:
-//   q = floor((2·max(N, 0)·m + m²) / 2m²), then min(q, m)
+//   floor((2·clamp(N, 0, m²)·m + m²) / 2m²)
 // gives 0 for N <= 0 (m²/2m² < 1), N's rounding for 0 < N < m², and m for
-// N >= m² (q >= floor(m + 1/2) = m); finish(N, m) of REPLACE is min(N, m) for
+// N >= m² (floor(m + 1/2) = m); finish(N, m) of REPLACE is min(N, m) for
 // N >= 0 ((2Nm + m)/2m = N + 1/2). Every value stays below 2^31.
 // Returns false (nothing written) for any other combination.
 bool combine_dot3_span_8(const TexEnvState& env, const std::uint16_t* previous, const std::uint16_t* primary,
@@ -400,8 +400,12 @@ bool combine_dot3_span_8(const TexEnvState& env, const std::uint16_t* previous, 
   const std::int32_t srgb = static_cast<std::int32_t>(env.rgb_scale), salpha = static_cast<std::int32_t>(env.alpha_scale);
   auto operand = [m](std::int32_t v, std::int32_t inv) { return inv ? m - v : v; };
   auto finish_m2 = [](std::int32_t N) {
-    const auto q = static_cast<std::uint32_t>(2 * std::max(N, 0) * m + m2) / static_cast<std::uint32_t>(2 * m2);
-    return static_cast<std::uint16_t>(std::min<std::uint32_t>(q, m));
+    // N clamped to [0, m²] first: the same codes (N <= 0 gives 0; N >= m² gives
+    // floor((2m³ + m²) / 2m²) = floor(m + 1/2) = m), and the division by the
+    // constant 2m² stays a multiplication (GCC had emitted a div instruction here).
+    const auto c = static_cast<std::uint64_t>(N < 0 ? 0 : N > m2 ? m2 : N);
+    constexpr std::uint64_t kTwoM2 = 2 * static_cast<std::uint64_t>(m2);
+    return static_cast<std::uint16_t>((2 * c * m + m2) / kTwoM2);
   };
   // One argument the constant colour (a light vector, as in the paper's bump
   // mapping): its three factors (2k − m) once, the other argument from the span.
