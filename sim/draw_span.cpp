@@ -155,6 +155,40 @@ void coordinates_stepped(const Coords& c0, const Coords& c1, const Coords& c2, D
   }
 }
 
+// A triangle's fragments, all its runs, in blocks: the weights first + i·d of
+// each fragment (the binary64 operations coordinates_stepped performs per run),
+// then coordinates_at over the block, padded to 4 lanes once per block instead
+// of once per run (the terrain's runs are a few fragments long). The padding
+// lanes (weights 0: 0/0 is NaN, nothing traps) write up to 3 slots past the
+// triangle's last fragment, as coordinates_stepped does past a run.
+template <bool kUnitQ, class Div>
+void coordinates_blocked(const Coords& c0, const Coords& c1, const Coords& c2, Div by_a, const Coords& d,
+                         const FastRuns& runs, double* s, double* t) {
+  constexpr int kBlock = 256;
+  alignas(32) double w0[kBlock + 3], w1[kBlock + 3], w2[kBlock + 3];
+  int j = 0, out = 0;
+  auto flush = [&] {
+    const int n4 = (j + 3) & ~3;
+    for (int i = j; i < n4; ++i) w0[i] = w1[i] = w2[i] = 0;
+    for (int i = 0; i < n4; ++i) coordinates_at<kUnitQ>(c0, c1, c2, by_a, w0[i], w1[i], w2[i], s[out + i], t[out + i]);
+    out += j;
+    j = 0;
+  };
+  for (int r = 0; r < runs.runs; ++r) {
+    const std::array<std::int64_t, 3>& w = runs.first[r];
+    const Coords f{static_cast<double>(w[0]), static_cast<double>(w[1]), static_cast<double>(w[2])};
+    for (int i = 0; i < runs.length[r]; ++i) {
+      if (j == kBlock) flush();
+      const double fi = static_cast<double>(i);
+      w0[j] = f[0] + fi * d[0];
+      w1[j] = f[1] + fi * d[1];
+      w2[j] = f[2] + fi * d[2];
+      ++j;
+    }
+  }
+  if (j > 0) flush();
+}
+
 }  // namespace
 
 void texture_coordinates(const std::array<const WindowVertex*, 3>& tv, int u, const TriangleCoverage& cov,
@@ -175,6 +209,13 @@ void texture_coordinates(const std::array<const WindowVertex*, 3>& tv, int u, co
   const DyadicCoords dt = candidate ? DyadicCoords(c0, c1, c2, 1, k) : DyadicCoords();
   const bool progression = candidate && ds.ok && dt.ok;
   const ByArea<true> by_pow2{a, 1 / a};
+  if (exact && !progression) {  // every run takes coordinates_stepped below: the triangle at once
+    if (pow2 && unit_q) coordinates_blocked<true>(c0, c1, c2, ByArea<true>{a, 1 / a}, d, runs, s, t);
+    else if (pow2) coordinates_blocked<false>(c0, c1, c2, ByArea<true>{a, 1 / a}, d, runs, s, t);
+    else if (unit_q) coordinates_blocked<true>(c0, c1, c2, ByArea<false>{a, 0}, d, runs, s, t);
+    else coordinates_blocked<false>(c0, c1, c2, ByArea<false>{a, 0}, d, runs, s, t);
+    return;
+  }
   double ds_step = 0, dt_step = 0;
   if (progression) coordinates_at<true>(c0, c1, c2, by_pow2, d[0], d[1], d[2], ds_step, dt_step);
   for (int r = 0, off = 0; r < runs.runs; off += runs.length[r], ++r) {
