@@ -587,6 +587,70 @@ void span_linear_repeat(const SpanLevel& L, const double* s, const double* t, in
       continue;
     }
     fill_y();
+    if constexpr (NC == 1) {
+      // One stored component (ALPHA, LUMINANCE, INTENSITY: the imaging path's
+      // maps): the four texels and the rounded sum per fragment in one loop, then
+      // the register components as (k & mask) | constant per channel, expand's
+      // table without a branch (k: 0xFFFF mask; 1: the constant one_code; 0: 0).
+      alignas(32) std::uint32_t k1[kAxisChunk];
+      const auto Wb = static_cast<std::uint32_t>(W), ub = static_cast<std::uint32_t>(b);
+      int f0 = 0;
+#ifdef __AVX2__
+      // Eight fragments at a time: the texels by 32-bit gathers at their code's
+      // byte offset (the low 16 bits; the high half, the next code, is masked
+      // off), unless a gather would read past the image (its last texel).
+      {
+        const __m256i vWb = _mm256_set1_epi32(static_cast<int>(Wb)), vub = _mm256_set1_epi32(static_cast<int>(ub));
+        const __m256i vone = _mm256_set1_epi32(static_cast<int>(one)), vhalf = _mm256_set1_epi32(static_cast<int>(half));
+        const __m256i low16 = _mm256_set1_epi32(0xFFFF);
+        const __m128i shift = _mm_cvtsi32_si128(B2);
+        const auto limit = static_cast<std::uint32_t>(im.codes.size()) - 1;  // the last code: a gather there reads past
+        auto ld = [](const std::int32_t* p, int f) { return _mm256_load_si256(reinterpret_cast<const __m256i*>(p + f)); };
+        auto gather = [&](__m256i idx) {
+          return _mm256_and_si256(_mm256_i32gather_epi32(reinterpret_cast<const int*>(codes), idx, 2), low16);
+        };
+        for (; f0 + 8 <= m; f0 += 8) {
+          const __m256i r0 = _mm256_add_epi32(_mm256_mullo_epi32(_mm256_add_epi32(ld(y0, f0), vub), vWb), vub);
+          const __m256i r1 = _mm256_add_epi32(_mm256_mullo_epi32(_mm256_add_epi32(ld(y1, f0), vub), vWb), vub);
+          const __m256i i00 = _mm256_add_epi32(r0, ld(x0, f0)), i10 = _mm256_add_epi32(r0, ld(x1, f0));
+          const __m256i i01 = _mm256_add_epi32(r1, ld(x0, f0)), i11 = _mm256_add_epi32(r1, ld(x1, f0));
+          const __m256i hi = _mm256_max_epu32(_mm256_max_epu32(i00, i10), _mm256_max_epu32(i01, i11));
+          if (!_mm256_testz_si256(_mm256_cmpeq_epi32(_mm256_max_epu32(hi, _mm256_set1_epi32(static_cast<int>(limit))), hi),
+                                  _mm256_set1_epi32(-1)))
+            break;  // some index >= limit: the scalar loop from here
+          const __m256i a = _mm256_load_si256(reinterpret_cast<const __m256i*>(wx + f0));
+          const __m256i bb = _mm256_load_si256(reinterpret_cast<const __m256i*>(wy + f0));
+          const __m256i na = _mm256_sub_epi32(vone, a), nb = _mm256_sub_epi32(vone, bb);
+          __m256i sum = _mm256_mullo_epi32(gather(i00), _mm256_mullo_epi32(na, nb));
+          sum = _mm256_add_epi32(sum, _mm256_mullo_epi32(gather(i10), _mm256_mullo_epi32(a, nb)));
+          sum = _mm256_add_epi32(sum, _mm256_mullo_epi32(gather(i01), _mm256_mullo_epi32(na, bb)));
+          sum = _mm256_add_epi32(sum, _mm256_mullo_epi32(gather(i11), _mm256_mullo_epi32(a, bb)));
+          _mm256_store_si256(reinterpret_cast<__m256i*>(k1 + f0), _mm256_srl_epi32(_mm256_add_epi32(sum, vhalf), shift));
+        }
+      }
+#endif
+      for (int f = f0; f < m; ++f) {
+        const std::uint32_t a = wx[f], bb = wy[f];
+        const std::uint32_t r0 = (static_cast<std::uint32_t>(y0[f]) + ub) * Wb + ub;
+        const std::uint32_t r1 = (static_cast<std::uint32_t>(y1[f]) + ub) * Wb + ub;
+        const std::uint32_t t00 = codes[r0 + static_cast<std::uint32_t>(x0[f])];
+        const std::uint32_t t10 = codes[r0 + static_cast<std::uint32_t>(x1[f])];
+        const std::uint32_t t01 = codes[r1 + static_cast<std::uint32_t>(x0[f])];
+        const std::uint32_t t11 = codes[r1 + static_cast<std::uint32_t>(x1[f])];
+        k1[f] = (t00 * ((one - a) * (one - bb)) + t10 * (a * (one - bb)) + t01 * ((one - a) * bb) + t11 * (a * bb) +
+                 half) >> B2;
+      }
+      std::uint16_t mask[4], constant[4];
+      for (int c = 0; c < 4; ++c) {
+        const int e = L.expand[static_cast<std::size_t>(c)];
+        mask[c] = e < 4 ? 0xFFFF : 0;
+        constant[c] = static_cast<std::uint16_t>(e == 5 ? L.one_code : 0u);
+      }
+      for (int f = 0; f < m; ++f)
+        for (int c = 0; c < 4; ++c)
+          o[4 * f + c] = static_cast<std::uint16_t>((static_cast<std::uint16_t>(k1[f]) & mask[c]) | constant[c]);
+      continue;
+    }
 #ifdef __AVX2__
     if constexpr (NC == 4 || NC == 3) {
       // Two fragments per 256-bit register (four 32-bit lanes each), the same
