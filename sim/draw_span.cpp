@@ -209,9 +209,9 @@ void texture_coordinates(const std::array<const WindowVertex*, 3>& tv, int u, co
   const DyadicCoords dt = candidate ? DyadicCoords(c0, c1, c2, 1, k) : DyadicCoords();
   const bool progression = candidate && ds.ok && dt.ok;
   const ByArea<true> by_pow2{a, 1 / a};
-  if (exact && !progression) {  // every run takes coordinates_stepped below: the triangle at once
-    if (pow2 && unit_q) coordinates_blocked<true>(c0, c1, c2, ByArea<true>{a, 1 / a}, d, runs, s, t);
-    else if (pow2) coordinates_blocked<false>(c0, c1, c2, ByArea<true>{a, 1 / a}, d, runs, s, t);
+  if (exact && !progression) {  // no run can take the progression: the triangle's runs at once
+    if (pow2 && unit_q) coordinates_blocked<true>(c0, c1, c2, by_pow2, d, runs, s, t);
+    else if (pow2) coordinates_blocked<false>(c0, c1, c2, by_pow2, d, runs, s, t);
     else if (unit_q) coordinates_blocked<true>(c0, c1, c2, ByArea<false>{a, 0}, d, runs, s, t);
     else coordinates_blocked<false>(c0, c1, c2, ByArea<false>{a, 0}, d, runs, s, t);
     return;
@@ -229,7 +229,7 @@ void texture_coordinates(const std::array<const WindowVertex*, 3>& tv, int u, co
       // hold 3 slots more than the fragments.
       const int n4 = (n + 3) & ~3;
       const Coords f{static_cast<double>(w[0]), static_cast<double>(w[1]), static_cast<double>(w[2])};
-      if (progression) {
+      {  // (exact here means a progression: see above)
         std::uint64_t W = 0;  // the largest |w_k| over the lanes 0 .. n4 − 1 (the ends of each linear weight)
         for (int j = 0; j < 3; ++j)
           W = std::max({W, static_cast<std::uint64_t>(std::abs(w[static_cast<std::size_t>(j)])),
@@ -247,10 +247,9 @@ void texture_coordinates(const std::array<const WindowVertex*, 3>& tv, int u, co
           continue;
         }
       }
-      if (pow2 && unit_q) coordinates_stepped<true>(c0, c1, c2, ByArea<true>{a, 1 / a}, f, d, n4, s + off, t + off);
-      else if (pow2) coordinates_stepped<false>(c0, c1, c2, ByArea<true>{a, 1 / a}, f, d, n4, s + off, t + off);
-      else if (unit_q) coordinates_stepped<true>(c0, c1, c2, ByArea<false>{a, 0}, f, d, n4, s + off, t + off);
-      else coordinates_stepped<false>(c0, c1, c2, ByArea<false>{a, 0}, f, d, n4, s + off, t + off);
+      // (Here the triangle is a progression, so A = 2^k and q = 1: the other cases
+      // took coordinates_blocked above.)
+      coordinates_stepped<true>(c0, c1, c2, by_pow2, f, d, n4, s + off, t + off);
       continue;
     }
     for (int i = 0; i < n; ++i) {  // the reference's conversions of the int64 weights

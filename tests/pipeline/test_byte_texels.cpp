@@ -10,6 +10,7 @@
 #include <random>
 #include <vector>
 
+#include "color_table_util.h"
 #include "pipeline/pixel_transfer/byte_texels.h"
 #include "pipeline/pixel_transfer/final_conversion.h"
 #include "pipeline/pixel_transfer/formats.h"
@@ -17,6 +18,7 @@
 
 using namespace ffsim;
 using namespace ffsim::pixel;
+using ffsim::pixel::test::random_table;
 
 namespace {
 
@@ -29,16 +31,6 @@ const GLenum kInternal[] = {gl::ALPHA, gl::ALPHA4, gl::ALPHA8, gl::ALPHA12, gl::
                             gl::INTENSITY, gl::INTENSITY8, gl::INTENSITY12, gl::RGB, gl::R3_G3_B2, gl::RGB5,
                             gl::RGB8, gl::RGB10, gl::RGBA, gl::RGBA2, gl::RGB5_A1, gl::RGBA8, gl::RGB10_A2,
                             gl::RGBA12, gl::RGBA16, 3, 4};
-
-ColorTable random_table(std::mt19937& rng) {
-  ColorTable t;
-  t.enabled = rng() % 2 == 0;
-  t.base = static_cast<BaseFormat>(rng() % 6);
-  t.width = 1 << (rng() % 9);
-  std::uniform_real_distribution<double> u(0, 1);
-  for (int i = 0; i < t.width * component_count(t.base); ++i) t.entries.push_back(static_cast<float>(u(rng)));
-  return t;
-}
 
 }  // namespace
 
@@ -63,8 +55,10 @@ TEST_CASE_TEMPLATE("byte texels: the tables give the generic path's codes", T, f
       for (int i = 0; i < 1 + static_cast<int>(rng() % 8); ++i) ts.color_maps[c].push_back(std::abs(u(rng)) / 1.5);
     }
     ts.map_color = rng() % 2 == 0;
-    is.table(TableSlot::Color) = random_table(rng);
-    is.table(TableSlot::PostColorMatrix) = random_table(rng);
+    const bool color_on = rng() % 2 == 0;
+    is.table(TableSlot::Color) = random_table(rng, color_on);
+    const bool post_on = rng() % 2 == 0;
+    is.table(TableSlot::PostColorMatrix) = random_table(rng, post_on);
     // One trial in six: a colour matrix or a convolution, which the path refuses.
     const int mixing = static_cast<int>(rng() % 12);
     if (mixing == 0) m[1] = 0.25;

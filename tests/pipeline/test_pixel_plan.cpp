@@ -5,23 +5,15 @@
 #include <cstring>
 #include <random>
 
+#include "color_table_util.h"
 #include "pipeline/pixel_transfer/transfer_plan.h"
 
 using namespace ffsim;
 using namespace ffsim::pixel;
+using ffsim::pixel::test::random_table;
 
 namespace {
 const Matrix4 kIdentity{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-
-ColorTable random_table(std::mt19937& rng, bool enabled) {
-  ColorTable t;
-  t.enabled = enabled;
-  t.base = static_cast<BaseFormat>(rng() % 6);
-  t.width = 1 << (rng() % 9);
-  std::uniform_real_distribution<double> u(0, 1);
-  for (int i = 0; i < t.width * component_count(t.base); ++i) t.entries.push_back(static_cast<float>(u(rng)));
-  return t;
-}
 
 template <class T>
 bool same_bits(const RgbaImage<T>& a, const RgbaImage<T>& b) {
