@@ -403,8 +403,9 @@ bool combine_dot3_span_8(const TexEnvState& env, const std::uint16_t* previous, 
     // N clamped to [0, m²] first: the same codes (N <= 0 gives 0; N >= m² gives
     // floor((2m³ + m²) / 2m²) = floor(m + 1/2) = m), and the division by the
     // constant 2m² stays a multiplication (GCC had emitted a div instruction here).
-    const auto c = static_cast<std::uint64_t>(N < 0 ? 0 : N > m2 ? m2 : N);
-    constexpr std::uint64_t kTwoM2 = 2 * static_cast<std::uint64_t>(m2);
+    // 2·c·m + m² <= 2m³ + m² < 2^26: 32-bit lanes, which GCC vectorises.
+    const auto c = static_cast<std::uint32_t>(N < 0 ? 0 : N > m2 ? m2 : N);
+    constexpr std::uint32_t kTwoM2 = 2 * static_cast<std::uint32_t>(m2);
     return static_cast<std::uint16_t>((2 * c * m + m2) / kTwoM2);
   };
   // One argument the constant colour (a light vector, as in the paper's bump
@@ -418,52 +419,67 @@ bool combine_dot3_span_8(const TexEnvState& env, const std::uint16_t* previous, 
     for (int c = 0; c < 3; ++c)
       K[c] = const0 ? 2 * operand(s0.base[a0 ? 3 : c], i0) - m : 2 * operand(s1.base[a1 ? 3 : c], i1) - m;
   // 2·operand(v) − m = ±(2v − m): an inverted operand (m − v) only negates its
-  // factor, so the two inversions are one sign on the sum. The sum, then the
-  // codes; alpha REPLACE in a second loop (out may alias `previous`, whose alpha
-  // the first loop does not write unless the dot product goes to alpha too).
+  // factor, so the two inversions are one sign on the sum.
   const std::int32_t sign = i0 != i1 ? -1 : 1;
   const std::int32_t scale_rgb = ext ? 1 : srgb, scale_alpha = ext ? 1 : salpha;
-  auto put = [&](int f, std::int32_t d) {
-    std::uint16_t* o = out + 4 * static_cast<std::size_t>(f);
-    o[0] = o[1] = o[2] = finish_m2(d * scale_rgb);
-    if (rgba) o[3] = finish_m2(d * scale_alpha);
-  };
-  if (!const0 && !const1 && !a0 && !a1 && s0.stride == 4 && s1.stride == 4) {
-    // Both arguments vary, colour operands (the paper's bump map against the
-    // interpolated light vector).
-    const std::uint16_t* x = s0.base;
-    const std::uint16_t* y = s1.base;
-    for (int f = 0; f < n; ++f, x += 4, y += 4) {
-      const std::int32_t d = (2 * x[0] - m) * (2 * y[0] - m) + (2 * x[1] - m) * (2 * y[1] - m) +
-                             (2 * x[2] - m) * (2 * y[2] - m);
-      put(f, sign * d);
-    }
-  } else if (const0 || const1) {  // (the same products, the constant side precomputed)
-    for (int f = 0; f < n; ++f) {
-      const std::uint16_t* w = sv.base + sv.stride * static_cast<std::size_t>(f);
-      std::int32_t d = 0;
-      for (int c = 0; c < 3; ++c) d += (2 * operand(w[av ? 3 : c], iv) - m) * K[c];
-      put(f, d);
-    }
-  } else {
-    for (int f = 0; f < n; ++f) {
-      const std::uint16_t* x = s0.base + s0.stride * static_cast<std::size_t>(f);
-      const std::uint16_t* y = s1.base + s1.stride * static_cast<std::size_t>(f);
-      std::int32_t d = 0;  // Σ (2k0 − m)(2k1 − m), |d| <= 3m²
-      for (int c = 0; c < 3; ++c)
-        d += (2 * operand(x[a0 ? 3 : c], i0) - m) * (2 * operand(y[a1 ? 3 : c], i1) - m);
-      put(f, d);
-    }
-  }
-  if (!rgba) {
-    if (sa.stride == 0) {
-      const auto alpha = static_cast<std::uint16_t>(std::min(salpha * operand(sa.base[3], ia), m));
-      for (int f = 0; f < n; ++f) out[4 * static_cast<std::size_t>(f) + 3] = alpha;
-    } else {
-      for (int f = 0; f < n; ++f) {
-        const std::size_t o = 4 * static_cast<std::size_t>(f) + 3;
-        out[o] = static_cast<std::uint16_t>(std::min(salpha * operand(sa.base[o], ia), m));
+  const auto alpha_const =  // (a span source's base is not read here: n may be 0)
+      sa.stride == 0 ? static_cast<std::uint16_t>(std::min(salpha * operand(sa.base[3], ia), m)) : std::uint16_t{0};
+  // Blocks of fragments: first every read (the sums, and the REPLACE alpha), then
+  // every write, whole pixels (`out` may alias a source, PREVIOUS: a block's
+  // fragments are all read before any is written, and later blocks read only
+  // later fragments). Each loop is free of aliasing, so each vectorises.
+  constexpr int kBlock = 256;
+  std::int32_t dot[kBlock];
+  std::uint16_t alpha[kBlock];
+  for (int f0 = 0; f0 < n; f0 += kBlock) {
+    const int nb = std::min(kBlock, n - f0);
+    const auto at = [f0](const Source& src) { return src.base + src.stride * static_cast<std::size_t>(f0); };
+    if (!const0 && !const1 && !a0 && !a1 && s0.stride == 4 && s1.stride == 4) {
+      // Both arguments vary, colour operands (the paper's bump map against the
+      // interpolated light vector).
+      const std::uint16_t* x = at(s0);
+      const std::uint16_t* y = at(s1);
+      for (int i = 0; i < nb; ++i) {
+        const std::uint16_t* xi = x + 4 * i;
+        const std::uint16_t* yi = y + 4 * i;
+        dot[i] = sign * ((2 * xi[0] - m) * (2 * yi[0] - m) + (2 * xi[1] - m) * (2 * yi[1] - m) +
+                         (2 * xi[2] - m) * (2 * yi[2] - m));
       }
+    } else if (const0 || const1) {  // (the same products, the constant side precomputed)
+      const std::uint16_t* v = at(sv);
+      for (int i = 0; i < nb; ++i) {
+        const std::uint16_t* w = v + sv.stride * static_cast<std::size_t>(i);
+        std::int32_t d = 0;
+        for (int c = 0; c < 3; ++c) d += (2 * operand(w[av ? 3 : c], iv) - m) * K[c];
+        dot[i] = d;
+      }
+    } else {
+      const std::uint16_t* x = at(s0);
+      const std::uint16_t* y = at(s1);
+      for (int i = 0; i < nb; ++i) {
+        const std::uint16_t* xi = x + s0.stride * static_cast<std::size_t>(i);
+        const std::uint16_t* yi = y + s1.stride * static_cast<std::size_t>(i);
+        std::int32_t d = 0;  // Σ (2k0 − m)(2k1 − m), |d| <= 3m²
+        for (int c = 0; c < 3; ++c)
+          d += (2 * operand(xi[a0 ? 3 : c], i0) - m) * (2 * operand(yi[a1 ? 3 : c], i1) - m);
+        dot[i] = d;
+      }
+    }
+    if (rgba) {
+      for (int i = 0; i < nb; ++i) alpha[i] = finish_m2(dot[i] * scale_alpha);
+    } else if (sa.stride == 0) {
+      std::fill_n(alpha, nb, alpha_const);
+    } else {  // REPLACE: finish(s·a, m) = min(s·a, m) for s·a >= 0
+      const std::uint16_t* a = at(sa);
+      for (int i = 0; i < nb; ++i) alpha[i] = static_cast<std::uint16_t>(std::min(salpha * operand(a[4 * i + 3], ia), m));
+    }
+    std::uint16_t* o = out + 4 * static_cast<std::size_t>(f0);
+    for (int i = 0; i < nb; ++i) {
+      const std::uint16_t v = finish_m2(dot[i] * scale_rgb);
+      o[4 * i] = v;
+      o[4 * i + 1] = v;
+      o[4 * i + 2] = v;
+      o[4 * i + 3] = alpha[i];
     }
   }
   return true;

@@ -139,8 +139,8 @@ TexEnvState random_env(std::mt19937& g) {
 
 // Returns how many fragments differ between the span kernel and the reference.
 // dot3: COMBINE with a DOT3 function, the alpha REPLACE half of the time (the
-// 8-bit DOT3 kernel, combine_dot3_span_8).
-int compare_env(std::mt19937& g, int bits, bool plant, bool dot3 = false) {
+// 8-bit DOT3 kernel, combine_dot3_span_8). Spans of 1 .. max_n fragments.
+int compare_env(std::mt19937& g, int bits, bool plant, bool dot3 = false, int max_n = 24) {
   TexEnvState env = random_env(g);
   if (dot3) {
     const GLenum f[] = {gl::DOT3_RGB, gl::DOT3_RGBA, gl::DOT3_RGB_EXT, gl::DOT3_RGBA_EXT};
@@ -151,7 +151,7 @@ int compare_env(std::mt19937& g, int bits, bool plant, bool dot3 = false) {
   const BaseFormat base = pick(g, kBases);
   const ColorFormat fmt{Arithmetic::Fixed, bits};
   const std::uint32_t max = (1u << bits) - 1;
-  const int n = 1 + static_cast<int>(g() % 24);
+  const int n = 1 + static_cast<int>(g() % static_cast<unsigned>(max_n));
   std::vector<std::uint16_t> prev(4 * static_cast<std::size_t>(n)), prim(prev.size()), tex(prev.size()), out(prev.size());
   for (auto* v : {&prev, &prim, &tex})
     for (auto& k : *v) k = static_cast<std::uint16_t>(g() % 4 == 0 ? (g() % 2) * max : g() % (max + 1));
@@ -213,6 +213,8 @@ TEST_CASE("fast texture: texture_environment_span_fixed == texture_environment, 
 TEST_CASE("fast texture: 8-bit DOT3 environments (every source, operand, scale; in place or not) == texture_environment") {
   std::mt19937 g(45);
   for (int it = 0; it < 4000; ++it) REQUIRE(compare_env(g, 8, false, true) == 0);
+  // spans longer than the kernel's blocks of 256 fragments (reads, then writes)
+  for (int it = 0; it < 300; ++it) REQUIRE(compare_env(g, 8, false, true, 800) == 0);
   int detected = 0;  // and a planted difference (another RGB scale) is seen
   for (int it = 0; it < 200; ++it) detected += compare_env(g, 8, true, true) > 0;
   CHECK(detected > 50);
