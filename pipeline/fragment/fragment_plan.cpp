@@ -1,6 +1,7 @@
 #include "pipeline/fragment/fragment_plan.h"
 
 #include <algorithm>
+#include <bit>
 #include <cstdio>
 #include <cstring>
 #include <stdexcept>
@@ -634,6 +635,60 @@ void alpha_test_fixed(GLenum func, const std::uint16_t* in, std::uint32_t ref, i
   for (int j = 0; j < n; ++j) alive[j] = test_func<std::uint32_t>(func, in[4 * j + 3], ref);
 }
 
+#if defined(__AVX2__) && defined(__BMI2__)
+// test_func(F, a, b) on eight unsigned 32-bit lanes: all ones where it holds.
+// (AVX2 compares signed lanes only: a <= b is min_epu32(a, b) == a.)
+template <GLenum F>
+inline __m256i depth_lanes(__m256i a, __m256i b) {
+  const __m256i ones = _mm256_set1_epi32(-1);
+  const __m256i le = _mm256_cmpeq_epi32(_mm256_min_epu32(a, b), a);
+  const __m256i eq = _mm256_cmpeq_epi32(a, b);
+  if constexpr (F == gl::LESS) return _mm256_andnot_si256(eq, le);
+  else if constexpr (F == gl::EQUAL) return eq;
+  else if constexpr (F == gl::LEQUAL) return le;
+  else if constexpr (F == gl::GREATER) return _mm256_xor_si256(le, ones);
+  else if constexpr (F == gl::NOTEQUAL) return _mm256_xor_si256(eq, ones);
+  else if constexpr (F == gl::GEQUAL) return _mm256_or_si256(_mm256_xor_si256(le, ones), eq);
+  else return ones;  // ALWAYS
+}
+
+// depth_only on listed pixels, eight fragments at a time: the stored depths
+// gathered, the test and `alive` branch free, and the stores only where a depth
+// changes (a surviving fragment whose depth differs from the stored one: the
+// paper's later passes, LEQUAL on the same geometry, store nothing). The pixels of
+// a chunk are distinct, so the gathers read what the scalar loop would. Returns
+// the fragments done (a multiple of 8).
+template <GLenum F>
+int depth_only_listed8(bool write, const std::uint32_t* z, std::uint32_t* depth, const std::uint32_t* pixel, int n,
+                       std::uint8_t* alive) {
+  int j = 0;
+  for (; j + 8 <= n; j += 8) {
+    // Pixel indices are below 2^31 (the window's size is limited far below):
+    // the gather's signed 32-bit indices hold them.
+    const __m256i idx = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(pixel + j));
+    const __m256i zb = _mm256_i32gather_epi32(reinterpret_cast<const int*>(depth), idx, 4);
+    const __m256i zz = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(z + j));
+    std::uint64_t a8;
+    std::memcpy(&a8, alive + j, sizeof a8);
+    const __m256i live = _mm256_cmpgt_epi32(_mm256_cvtepu8_epi32(_mm_cvtsi64_si128(static_cast<long long>(a8))),
+                                            _mm256_setzero_si256());
+    const __m256i pass = _mm256_and_si256(live, depth_lanes<F>(zz, zb));
+    const auto bits = static_cast<unsigned>(_mm256_movemask_ps(_mm256_castsi256_ps(pass)));
+    a8 = _pdep_u64(bits, 0x0101010101010101ull);  // one byte 0 or 1 per fragment
+    std::memcpy(alive + j, &a8, sizeof a8);
+    if (write) {
+      const __m256i changed = _mm256_andnot_si256(_mm256_cmpeq_epi32(zz, zb), pass);
+      auto store = static_cast<unsigned>(_mm256_movemask_ps(_mm256_castsi256_ps(changed)));
+      for (; store; store &= store - 1) {
+        const int i = std::countr_zero(store);
+        depth[pixel[j + i]] = z[j + i];
+      }
+    }
+  }
+  return j;
+}
+#endif
+
 template <class Px, class Cmp>
 void depth_only(bool write, const std::uint32_t* z, std::uint32_t* depth, Px pixel, int n, std::uint8_t* alive, Cmp cmp) {
   for (int j = 0; j < n; ++j) {
@@ -648,6 +703,25 @@ void depth_only(bool write, const std::uint32_t* z, std::uint32_t* depth, Px pix
 template <class Px>
 void depth_only_stage(GLenum func, bool write, const std::uint32_t* z, std::uint32_t* depth, Px pixel, int n,
                       std::uint8_t* alive) {
+#if defined(__AVX2__) && defined(__BMI2__)
+  if constexpr (std::is_same_v<Px, ListPixels>) {
+    int done = 0;
+    switch (func) {
+      case gl::LESS: done = depth_only_listed8<gl::LESS>(write, z, depth, pixel.pixel, n, alive); break;
+      case gl::EQUAL: done = depth_only_listed8<gl::EQUAL>(write, z, depth, pixel.pixel, n, alive); break;
+      case gl::LEQUAL: done = depth_only_listed8<gl::LEQUAL>(write, z, depth, pixel.pixel, n, alive); break;
+      case gl::GREATER: done = depth_only_listed8<gl::GREATER>(write, z, depth, pixel.pixel, n, alive); break;
+      case gl::NOTEQUAL: done = depth_only_listed8<gl::NOTEQUAL>(write, z, depth, pixel.pixel, n, alive); break;
+      case gl::GEQUAL: done = depth_only_listed8<gl::GEQUAL>(write, z, depth, pixel.pixel, n, alive); break;
+      case gl::ALWAYS: done = depth_only_listed8<gl::ALWAYS>(write, z, depth, pixel.pixel, n, alive); break;
+      default: break;  // NEVER (and no other value reaches here): the loop below
+    }
+    if (done > 0) {  // the remaining fragments (fewer than 8) by the scalar loop
+      depth_only_stage(func, write, z + done, depth, ListPixels{pixel.pixel + done}, n - done, alive + done);
+      return;
+    }
+  }
+#endif
   switch (func) {  // test_func's table (test_func.h)
     case gl::NEVER: std::fill_n(alive, n, std::uint8_t{0}); return;
     case gl::LESS: return depth_only(write, z, depth, pixel, n, alive, [](std::uint32_t a, std::uint32_t b) { return a < b; });

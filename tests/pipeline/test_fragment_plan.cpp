@@ -478,6 +478,33 @@ TEST_CASE("plan vs full path: fragments listed by pixel (run_fragment_plan_pixel
   CHECK(compared == 4 * 128);
 }
 
+TEST_CASE("plan vs full path: listed pixels, the depth test alone, every function and mask, 16-, 24- and 32-bit depth") {
+  // The depth-only stage on listed pixels (eight fragments at a time where the
+  // machine has AVX2): every comparison with and without depth writes, fragments
+  // killed before it by the alpha test or not, depths from small sets (equal
+  // values often) and, on the 32-bit target, above 2^31 (unsigned comparisons).
+  std::mt19937 rng(778);
+  int compared = 0;
+  for (const int depth_bits : {16, 24, 32}) {
+    const FragmentTarget t{40, 20, Arithmetic::Fixed, 8, 0, depth_bits};
+    for (const GLenum func : kFuncs)
+      for (const bool mask : {false, true})
+        for (const bool alpha : {false, true})
+          for (int rep = 0; rep < 4; ++rep) {
+            FragmentOpsState s = random_state(rng, alpha ? 8u | 2u : 8u, t);
+            s.depth.func = func;
+            s.depth_mask = mask;
+            Buffers b(t);
+            randomize(rng, b);
+            Buffers p = b, f = b;
+            INFO("func ", func, " mask ", mask, " alpha ", alpha, " depth bits ", depth_bits);
+            REQUIRE(pixels_match_full(rng, s, p, f, false));
+            ++compared;
+          }
+  }
+  CHECK(compared == 3 * 8 * 2 * 2 * 4);
+}
+
 TEST_CASE("plan vs full path: the pixel-list comparison detects a misplaced fragment, and bad calls are refused") {
   std::mt19937 rng(778);
   FragmentOpsState s;  // a plain copy: a fragment one pixel off leaves a visible difference
