@@ -247,29 +247,32 @@ struct FixedKernel {
 
   std::uint32_t max() const { return kM ? kM : M; }
 
-  // Factor `f` for channel c of every fragment of the chunk.
-  void factor(GLenum f, int c, const std::uint32_t* kc, int n, std::uint32_t* out) const {
+  // Factor `f` for channel c of every fragment of the chunk: the source or
+  // destination array itself when the factor is one of them (no copy), else
+  // computed into `scratch`.
+  const std::uint32_t* factor(GLenum f, int c, const std::uint32_t* kc, int n, std::uint32_t* scratch) const {
     const std::uint32_t m = max();
+    std::uint32_t* out = scratch;
     switch (f) {
-      case gl::ZERO: std::fill_n(out, n, 0u); return;
-      case gl::ONE: std::fill_n(out, n, m); return;
-      case gl::SRC_COLOR: std::copy_n(src[c], n, out); return;
-      case gl::ONE_MINUS_SRC_COLOR: for (int j = 0; j < n; ++j) out[j] = m - src[c][j]; return;
-      case gl::DST_COLOR: std::copy_n(dst[c], n, out); return;
-      case gl::ONE_MINUS_DST_COLOR: for (int j = 0; j < n; ++j) out[j] = m - dst[c][j]; return;
-      case gl::SRC_ALPHA: std::copy_n(src[3], n, out); return;
-      case gl::ONE_MINUS_SRC_ALPHA: for (int j = 0; j < n; ++j) out[j] = m - src[3][j]; return;
-      case gl::DST_ALPHA: std::copy_n(dst[3], n, out); return;
-      case gl::ONE_MINUS_DST_ALPHA: for (int j = 0; j < n; ++j) out[j] = m - dst[3][j]; return;
-      case gl::CONSTANT_COLOR: std::fill_n(out, n, kc[c]); return;
-      case gl::ONE_MINUS_CONSTANT_COLOR: std::fill_n(out, n, m - kc[c]); return;
-      case gl::CONSTANT_ALPHA: std::fill_n(out, n, kc[3]); return;
-      case gl::ONE_MINUS_CONSTANT_ALPHA: std::fill_n(out, n, m - kc[3]); return;
+      case gl::ZERO: std::fill_n(out, n, 0u); return out;
+      case gl::ONE: std::fill_n(out, n, m); return out;
+      case gl::SRC_COLOR: return src[c];
+      case gl::ONE_MINUS_SRC_COLOR: for (int j = 0; j < n; ++j) out[j] = m - src[c][j]; return out;
+      case gl::DST_COLOR: return dst[c];
+      case gl::ONE_MINUS_DST_COLOR: for (int j = 0; j < n; ++j) out[j] = m - dst[c][j]; return out;
+      case gl::SRC_ALPHA: return src[3];
+      case gl::ONE_MINUS_SRC_ALPHA: for (int j = 0; j < n; ++j) out[j] = m - src[3][j]; return out;
+      case gl::DST_ALPHA: return dst[3];
+      case gl::ONE_MINUS_DST_ALPHA: for (int j = 0; j < n; ++j) out[j] = m - dst[3][j]; return out;
+      case gl::CONSTANT_COLOR: std::fill_n(out, n, kc[c]); return out;
+      case gl::ONE_MINUS_CONSTANT_COLOR: std::fill_n(out, n, m - kc[c]); return out;
+      case gl::CONSTANT_ALPHA: std::fill_n(out, n, kc[3]); return out;
+      case gl::ONE_MINUS_CONSTANT_ALPHA: std::fill_n(out, n, m - kc[3]); return out;
       case gl::SRC_ALPHA_SATURATE:
         if (c == 3) std::fill_n(out, n, m);
         else for (int j = 0; j < n; ++j) out[j] = std::min(src[3][j], m - dst[3][j]);
-        return;
-      default: std::fill_n(out, n, 0u); return;
+        return out;
+      default: std::fill_n(out, n, 0u); return out;
     }
   }
 
@@ -284,7 +287,8 @@ struct FixedKernel {
 
   void channel(const FragmentPlanKey& key, const std::uint32_t* kc, int c, int n, std::uint32_t* out) const {
     const std::uint32_t m = max();
-    std::uint32_t S[kChunk], D[kChunk];
+    std::uint32_t s_scratch[kChunk], d_scratch[kChunk];
+    const std::uint32_t *S = nullptr, *D = nullptr;  // the factors (factor())
     const std::uint32_t* cs = src[c];
     const std::uint32_t* cd = dst[c];
     switch (key.channel[c]) {
@@ -292,11 +296,11 @@ struct FixedKernel {
       case ChannelOp::Zero: std::fill_n(out, n, 0u); return;
       case ChannelOp::Copy: std::copy_n(cs, n, out); return;
       case ChannelOp::SrcTerm:
-        factor(key.blend_src, c, kc, n, S);
+        S = factor(key.blend_src, c, kc, n, s_scratch);
         for (int j = 0; j < n; ++j) out[j] = finish(static_cast<I>(cs[j]) * static_cast<I>(S[j]));
         return;
       case ChannelOp::DstTerm:
-        factor(key.blend_dst, c, kc, n, D);
+        D = factor(key.blend_dst, c, kc, n, d_scratch);
         for (int j = 0; j < n; ++j) out[j] = finish(static_cast<I>(cd[j]) * static_cast<I>(D[j]));
         return;
       case ChannelOp::Add:
@@ -306,8 +310,8 @@ struct FixedKernel {
           for (int j = 0; j < n; ++j) out[j] = std::min(cs[j] + cd[j], m);
           return;
         }
-        factor(key.blend_src, c, kc, n, S);
-        factor(key.blend_dst, c, kc, n, D);
+        S = factor(key.blend_src, c, kc, n, s_scratch);
+        D = factor(key.blend_dst, c, kc, n, d_scratch);
         for (int j = 0; j < n; ++j)
           out[j] = finish(static_cast<I>(cs[j]) * static_cast<I>(S[j]) + static_cast<I>(cd[j]) * static_cast<I>(D[j]));
         return;
@@ -316,8 +320,8 @@ struct FixedKernel {
           for (int j = 0; j < n; ++j) out[j] = cs[j] > cd[j] ? cs[j] - cd[j] : 0u;
           return;
         }
-        factor(key.blend_src, c, kc, n, S);
-        factor(key.blend_dst, c, kc, n, D);
+        S = factor(key.blend_src, c, kc, n, s_scratch);
+        D = factor(key.blend_dst, c, kc, n, d_scratch);
         for (int j = 0; j < n; ++j)
           out[j] = finish(static_cast<I>(cs[j]) * static_cast<I>(S[j]) - static_cast<I>(cd[j]) * static_cast<I>(D[j]));
         return;
@@ -326,8 +330,8 @@ struct FixedKernel {
           for (int j = 0; j < n; ++j) out[j] = cd[j] > cs[j] ? cd[j] - cs[j] : 0u;
           return;
         }
-        factor(key.blend_src, c, kc, n, S);
-        factor(key.blend_dst, c, kc, n, D);
+        S = factor(key.blend_src, c, kc, n, s_scratch);
+        D = factor(key.blend_dst, c, kc, n, d_scratch);
         for (int j = 0; j < n; ++j)
           out[j] = finish(static_cast<I>(cd[j]) * static_cast<I>(D[j]) - static_cast<I>(cs[j]) * static_cast<I>(S[j]));
         return;
@@ -521,12 +525,34 @@ void color_stage_fixed(const FragmentPlan& plan, const FragmentConstants& k, con
       kern.src[c][j] = in[4 * j + c];
       kern.src[3][j] = in[4 * j + 3];
     }
-    if (plan.read_dst_color)
-      for (int j = 0; j < n; ++j) {
+    if (plan.read_dst_color) {
+      int j0 = 0;
+#if defined(__AVX2__)
+      if constexpr (std::is_same_v<Px, ListPixels>) {
+        // Eight pixels' channel c and alpha by 32-bit gathers: the codes pair
+        // (2, 3) at byte 8p + 4, or (c, c + 1) at 8p + 2c when c < 2. Pixel
+        // indices are below 2^30, so the 32-bit gather indices 2p + 1 and 2p hold them.
+        const int* base = reinterpret_cast<const int*>(fb);
+        const __m256i lo16 = _mm256_set1_epi32(0xFFFF);
+        for (; j0 + 8 <= n; j0 += 8) {
+          const __m256i p2 = _mm256_slli_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(pixel.pixel + j0)), 1);
+          const __m256i hi = _mm256_i32gather_epi32(base, _mm256_add_epi32(p2, _mm256_set1_epi32(1)), 4);  // B | A << 16
+          _mm256_storeu_si256(reinterpret_cast<__m256i*>(kern.dst[3] + j0), _mm256_srli_epi32(hi, 16));
+          if (c == 2) _mm256_storeu_si256(reinterpret_cast<__m256i*>(kern.dst[2] + j0), _mm256_and_si256(hi, lo16));
+          if (c < 2) {
+            const __m256i low = _mm256_i32gather_epi32(base, p2, 4);  // R | G << 16
+            _mm256_storeu_si256(reinterpret_cast<__m256i*>(kern.dst[c] + j0),
+                                c == 0 ? _mm256_and_si256(low, lo16) : _mm256_srli_epi32(low, 16));
+          }
+        }
+      }
+#endif
+      for (int j = j0; j < n; ++j) {
         const std::uint16_t* px = fb + 4 * pixel(j);
         kern.dst[c][j] = px[c];
         kern.dst[3][j] = px[3];
       }
+    }
     std::uint32_t out[kChunk];
     kern.channel(plan.key, k.blend_color_code.data(), c, n, out);
     for (int j = 0; j < n; ++j)
