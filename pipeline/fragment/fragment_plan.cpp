@@ -529,9 +529,10 @@ void color_stage_fixed(const FragmentPlan& plan, const FragmentConstants& k, con
       int j0 = 0;
 #if defined(__AVX2__)
       if constexpr (std::is_same_v<Px, ListPixels>) {
-        // Eight pixels' channel c and alpha by 32-bit gathers: the codes pair
-        // (2, 3) at byte 8p + 4, or (c, c + 1) at 8p + 2c when c < 2. Pixel
-        // indices are below 2^30, so the 32-bit gather indices 2p + 1 and 2p hold them.
+        // Eight pixels' channel c and alpha by 32-bit gathers: the code pair
+        // (2, 3) at byte 8p + 4 and, when c < 2, the pair (0, 1) at 8p (little
+        // endian: the lower channel in the low half). Pixel indices are below
+        // 2^26 (run_fragment_plan_pixels), so the gather indices 2p + 1 and 2p fit.
         const int* base = reinterpret_cast<const int*>(fb);
         const __m256i lo16 = _mm256_set1_epi32(0xFFFF);
         for (; j0 + 8 <= n; j0 += 8) {
@@ -689,8 +690,8 @@ int depth_only_listed8(bool write, const std::uint32_t* z, std::uint32_t* depth,
                        std::uint8_t* alive) {
   int j = 0;
   for (; j + 8 <= n; j += 8) {
-    // Pixel indices are below 2^31 (the window's size is limited far below):
-    // the gather's signed 32-bit indices hold them.
+    // Pixel indices are below 2^26 (run_fragment_plan_pixels): the gather's
+    // signed 32-bit indices hold them.
     const __m256i idx = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(pixel + j));
     const __m256i zb = _mm256_i32gather_epi32(reinterpret_cast<const int*>(depth), idx, 4);
     const __m256i zz = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(z + j));

@@ -139,7 +139,8 @@ void run_fragment_plan(const FragmentPlan& plan, const FragmentConstants& k, con
 // run_fragment_plan for n fragments of one primitive at distinct pixels, all
 // inside k.rect, in a fixed profile: fragment i has colour codes codes[4i .. 4i+3],
 // depth depth[i] (may be null without a depth test) and lands on pixel index
-// pixel[i] = y·width + x. No fragment reads another's pixel, so the buffers end
+// pixel[i] = y·width + x (below 2^26, the framebuffer's limit in sim/framebuffer.h;
+// the AVX2 loops use them as 32-bit gather indices). No fragment reads another's pixel, so the buffers end
 // as run_fragment_plan leaves them on the same fragments as row spans in any
 // order. Throws std::invalid_argument for float colour or a missing depth.
 void run_fragment_plan_pixels(const FragmentPlan& plan, const FragmentConstants& k, const std::uint16_t* codes,
