@@ -15,7 +15,6 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -23,6 +22,7 @@
 #include <vector>
 
 #include "pipeline/fragment/fragment_plan.h"
+#include "sim/hash.h"
 
 using namespace ffsim;
 
@@ -97,7 +97,7 @@ int main(int argc, char** argv) {
   csv << "state,paper_pass,width,height,fragments_per_pass,ns_per_fragment\n";
   std::printf("run_fragment_plan_pixels, %dx%d, %d fragments per pass, min of %d x 4 passes\n\n", W, H, n, repeat);
   std::printf("| state | paper's pass | ns per fragment |\n| --- | --- | --- |\n");
-  std::uint64_t hash = 0;
+  Fnv1a64 hash;  // sim/hash.h
   for (const Case& c : cases()) {
     std::vector<std::uint16_t> codes(4 * npix);
     for (auto& v : codes) v = static_cast<std::uint16_t>(rng() % 256);
@@ -119,10 +119,10 @@ int main(int argc, char** argv) {
     const double ns = best * 1e9 / (4.0 * n);
     std::printf("| %s | %s | %.2f |\n", c.name, c.pass, ns);
     csv << '"' << c.name << "\",\"" << c.pass << "\"," << W << ',' << H << ',' << n << ',' << ns << '\n';
-    for (const auto v : codes) hash = hash * 1099511628211ull + v;
-    for (const auto v : depth) hash = hash * 1099511628211ull + v;
+    hash.bytes(codes.data(), codes.size() * sizeof codes[0]);
+    hash.bytes(depth.data(), depth.size() * sizeof depth[0]);
   }
   std::printf("\nbuffers hash %016llx (compare builds at the same --size and --repeat)\nwrote %s/fragment_ops.csv\n",
-              static_cast<unsigned long long>(hash), out_dir.c_str());
+              static_cast<unsigned long long>(hash.state), out_dir.c_str());
   return 0;
 }

@@ -743,10 +743,11 @@ void depth_only_stage(GLenum func, bool write, const std::uint32_t* z, std::uint
       case gl::ALWAYS: done = depth_only_listed8<gl::ALWAYS>(write, z, depth, pixel.pixel, n, alive); break;
       default: break;  // NEVER (and no other value reaches here): the loop below
     }
-    if (done > 0) {  // the remaining fragments (fewer than 8) by the scalar loop
-      depth_only_stage(func, write, z + done, depth, ListPixels{pixel.pixel + done}, n - done, alive + done);
-      return;
-    }
+    // The remaining fragments (fewer than 8; all of them for NEVER) by the loops below.
+    z += done;
+    pixel.pixel += done;
+    alive += done;
+    n -= done;
   }
 #endif
   switch (func) {  // test_func's table (test_func.h)
