@@ -671,7 +671,7 @@ class Context {
   struct SpanScratch {
     std::vector<std::uint16_t> primary, secondary;
     std::array<std::vector<std::uint16_t>, kMaxTextureUnits> texels;
-    std::vector<double> s, t;
+    std::vector<float> s, t;  // s/q, t/q rounded to binary32 (texture_coordinates)
     std::vector<std::uint32_t> lane;
     // A group of runs (sim/draw.cpp), from one triangle or several: first
     // weights, rows, first pixels, lengths (one per run), and the shaded codes and

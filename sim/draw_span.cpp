@@ -6,8 +6,10 @@
 // only the DDAs below restart at every run:
 //   - colour and depth codes by interpolate_code_run, the exact DDA form of
 //     interpolate_code (numerics §8.2);
-//   - texture coordinates by the very same binary64 operations, in the same
-//     order, per fragment;
+//   - texture coordinates as the binary32 values the sampler rounds the
+//     reference's binary64 s/q, t/q to: the same sums, then one reciprocal and a
+//     test that proves the rounding, else the reference's divisions
+//     (coordinates_rounded);
 //   - texels by sample_span_fixed (textures whose result cannot depend on λ);
 //   - texture environments by texture_environment_span_fixed where an integer
 //     kernel exists, else texture_environment per fragment; the colour sum on
@@ -15,6 +17,9 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#ifdef __AVX2__
+#include <immintrin.h>
+#endif
 
 #include "pipeline/combiners/combiner_span.h"
 #include "pipeline/combiners/register_combiners.h"
@@ -52,10 +57,12 @@ void interpolate_colors(const std::array<const WindowVertex*, 3>& tv, bool secon
   }
 }
 
-// s/q and t/q of unit u at the runs' fragments: the per-fragment path's
-// operations exactly (v_j = ((0 + w_0·c_0j) + w_1·c_1j) + w_2·c_2j, then v_j / A,
-// then v_0 / v_2 and v_1 / v_2, binary64), written as loops over fragments the
-// compiler vectorises (IEEE operations give the same bits in vector lanes).
+// s/q and t/q of unit u at the runs' fragments, rounded to binary32 as the
+// sampler rounds them: the per-fragment path's values (v_j = ((0 + w_0·c_0j) +
+// w_1·c_1j) + w_2·c_2j, then v_j / A, then v_0 / v_2 and v_1 / v_2, binary64),
+// computed as loops over fragments in vector lanes (IEEE operations give the same
+// bits in lanes), and on most triangles from one reciprocal per fragment
+// (coordinates_rounded below proves each rounding or falls back).
 //  - The weights are stepped, not read: w_k = first_k + i·dwdx_k. A covered
 //    fragment's weights lie in [0, A] (each edge function >= 0, their sum A), so
 //    for A < 2^53 every w_k, every i·dwdx_k (= w_k − first_k, in [−A, A]) and
@@ -147,30 +154,148 @@ inline void coordinates_at(const Coords& c0, const Coords& c1, const Coords& c2,
 
 template <bool kUnitQ, class Div>
 void coordinates_stepped(const Coords& c0, const Coords& c1, const Coords& c2, Div by_a, const Coords& first,
-                         const Coords& d, int n, double* s, double* t) {
+                         const Coords& d, int n, float* s, float* t) {
   for (int i = 0; i < n; ++i) {
     const double fi = static_cast<double>(i);
-    coordinates_at<kUnitQ>(c0, c1, c2, by_a, first[0] + fi * d[0], first[1] + fi * d[1], first[2] + fi * d[2], s[i],
-                           t[i]);
+    double sd = 0, td = 0;
+    coordinates_at<kUnitQ>(c0, c1, c2, by_a, first[0] + fi * d[0], first[1] + fi * d[1], first[2] + fi * d[2], sd, td);
+    s[i] = static_cast<float>(sd);
+    t[i] = static_cast<float>(td);
+  }
+}
+
+// ---- s/q and t/q rounded to binary32, from one division per fragment ----------
+// The sampler uses RN32(s), the reference's binary64 s rounded to binary32
+// (sample_level), so that is what the span path computes. With v_0, v_1, v_2 the
+// reference's sums (the same operations), r = RN(1/v_2) (RN(1/A) when q = 1)
+// and a = RN(v_0·r), u = 2^−53:
+//  - s = RN(RN(v_0/A)/RN(v_2/A)) (q = 1: RN(v_0/A)) = (v_0/v_2)(1+e1)(1+e3)/(1+e2)
+//    and a = (v_0/v_2)(1+e4)(1+e5), every |e_i| <= u when no step underflows or
+//    overflows, so s = a·(1+η) with |η| < 2^−49;
+//  - lo = RN(a·(1 − 2^−40)) and hi = RN(a·(1 + 2^−40)) then enclose s (each
+//    product's rounding moves it by at most u·|a|, far inside the 2^−40 margin),
+//    and RN32 is monotone: when RN32(lo) == RN32(hi), RN32(s) is that value. A
+//    zero keeps a's sign, which is s's (sign(v_0)·sign(v_2) both ways).
+// When may a step underflow or overflow? r is checked: 2^−190 <= |r| <= 2^190
+// (q = 1: r = RN(1/A) is in [2^−53, 1]). Then, with A in [1, 2^53):
+//  - |a| >= 2^−190: |v_0| >= 2^−381 or so, every step above is normal;
+//  - |a| < 2^−190: |v_0/v_2| is below 2^−189, so both s and a are far below the
+//    smallest binary32 (2^−149): RN32 gives a zero of the sign above either way
+//    (an underflowed RN(v_0/A) keeps v_0's sign), and lo, hi are such zeros;
+//  - a quotient too large for binary64 is also far above the largest binary32:
+//    RN32 gives the infinity of that sign either way, and lo, hi are too (a
+//    product that overflows rounds to that infinity);
+//  - a NaN (v_0 or v_1 not finite with q = 0, or a NaN input) fails lo == hi.
+// Any lane that fails (s within about 2^−40 relative of a binary32 rounding
+// boundary, or r out of its range) takes the reference's divisions.
+constexpr double kBelow = 1 - 0x1p-40, kAbove = 1 + 0x1p-40;
+inline bool r_in_range(double r) {
+  const double a = std::fabs(r);
+  return a >= 0x1p-190 && a <= 0x1p190;
+}
+
+// Lanes [0, n) of w0, w1, w2 (weights), n a multiple of 4: s[i], t[i] as RN32 of
+// coordinates_at's values for i < used; the lanes from `used` on are padding,
+// written with any value (not worth the reference's divisions). kExact: A = 2^k
+// and q = 1, where coordinates_at is one exact-scale multiplication per
+// coordinate: its values are rounded directly.
+template <bool kUnitQ, bool kExact, class Div>
+void coordinates_rounded(const Coords& c0, const Coords& c1, const Coords& c2, Div by_a, double inv_a,
+                         const double* w0, const double* w1, const double* w2, int n, int used, float* s, float* t) {
+  if constexpr (kExact) {
+    for (int i = 0; i < n; ++i) {  // (vectorised by the compiler)
+      double sd = 0, td = 0;
+      coordinates_at<true>(c0, c1, c2, by_a, w0[i], w1[i], w2[i], sd, td);
+      s[i] = static_cast<float>(sd);
+      t[i] = static_cast<float>(td);
+    }
+    return;
+  }
+  int i = 0;
+  // A lane that fails the test: the reference's divisions.
+  auto exact = [&](int k) {
+    double sd = 0, td = 0;
+    coordinates_at<kUnitQ>(c0, c1, c2, by_a, w0[k], w1[k], w2[k], sd, td);
+    s[k] = static_cast<float>(sd);
+    t[k] = static_cast<float>(td);
+  };
+#ifdef __AVX2__
+  {
+    const __m256d zero = _mm256_setzero_pd(), below = _mm256_set1_pd(kBelow), above = _mm256_set1_pd(kAbove);
+    const __m256d abs_mask = _mm256_castsi256_pd(_mm256_set1_epi64x(0x7FFFFFFFFFFFFFFFll));
+    const __m256d lo_bound = _mm256_set1_pd(0x1p-190), hi_bound = _mm256_set1_pd(0x1p190);
+    // ((0 + w0·c0) + w1·c1) + w2·c2: the reference's sum, lane by lane (no FMA).
+    __m256d k[3][3];
+    for (std::size_t j = 0; j < 3; ++j) {
+      k[j][0] = _mm256_set1_pd(c0[j]);
+      k[j][1] = _mm256_set1_pd(c1[j]);
+      k[j][2] = _mm256_set1_pd(c2[j]);
+    }
+    auto sum = [&](__m256d W0, __m256d W1, __m256d W2, int j) {
+      const __m256d* kj = k[j];
+      return _mm256_add_pd(_mm256_add_pd(_mm256_add_pd(zero, _mm256_mul_pd(W0, kj[0])), _mm256_mul_pd(W1, kj[1])),
+                           _mm256_mul_pd(W2, kj[2]));
+    };
+    for (; i + 4 <= n; i += 4) {
+      const __m256d W0 = _mm256_loadu_pd(w0 + i), W1 = _mm256_loadu_pd(w1 + i), W2 = _mm256_loadu_pd(w2 + i);
+      const __m256d v0 = sum(W0, W1, W2, 0), v1 = sum(W0, W1, W2, 1);
+      __m256d r;
+      int good = 0xF;
+      if constexpr (kUnitQ) {
+        r = _mm256_set1_pd(inv_a);
+      } else {
+        r = _mm256_div_pd(_mm256_set1_pd(1.0), sum(W0, W1, W2, 2));
+        const __m256d ar = _mm256_and_pd(r, abs_mask);
+        good = _mm256_movemask_pd(_mm256_and_pd(_mm256_cmp_pd(ar, lo_bound, _CMP_GE_OQ), _mm256_cmp_pd(ar, hi_bound, _CMP_LE_OQ)));
+      }
+      const __m256d as = _mm256_mul_pd(v0, r), at = _mm256_mul_pd(v1, r);
+      const __m128 s_lo = _mm256_cvtpd_ps(_mm256_mul_pd(as, below)), s_hi = _mm256_cvtpd_ps(_mm256_mul_pd(as, above));
+      const __m128 t_lo = _mm256_cvtpd_ps(_mm256_mul_pd(at, below)), t_hi = _mm256_cvtpd_ps(_mm256_mul_pd(at, above));
+      good &= _mm_movemask_ps(_mm_and_ps(_mm_cmpeq_ps(s_lo, s_hi), _mm_cmpeq_ps(t_lo, t_hi)));
+      _mm_storeu_ps(s + i, s_lo);
+      _mm_storeu_ps(t + i, t_lo);
+      const int real = used - i >= 4 ? 0xF : (1 << std::max(used - i, 0)) - 1;
+      for (int bad = ~good & real; bad; bad &= bad - 1) exact(i + std::countr_zero(static_cast<unsigned>(bad)));
+    }
+  }
+#endif
+  for (; i < n; ++i) {
+    const double v0 = ((0.0 + w0[i] * c0[0]) + w1[i] * c1[0]) + w2[i] * c2[0];
+    const double v1 = ((0.0 + w0[i] * c0[1]) + w1[i] * c1[1]) + w2[i] * c2[1];
+    bool ok = true;
+    double r = inv_a;
+    if constexpr (!kUnitQ) {
+      r = 1.0 / (((0.0 + w0[i] * c0[2]) + w1[i] * c1[2]) + w2[i] * c2[2]);
+      ok = r_in_range(r);
+    }
+    const double as = v0 * r, at = v1 * r;
+    const auto s_lo = static_cast<float>(as * kBelow), s_hi = static_cast<float>(as * kAbove);
+    const auto t_lo = static_cast<float>(at * kBelow), t_hi = static_cast<float>(at * kAbove);
+    if ((ok && s_lo == s_hi && t_lo == t_hi) || i >= used) {
+      s[i] = s_lo;
+      t[i] = t_lo;
+    } else {
+      exact(i);
+    }
   }
 }
 
 // A triangle's fragments, all its runs, in blocks: the weights first + i·d of
 // each fragment (the binary64 operations coordinates_stepped performs per run),
-// then coordinates_at over the block, padded to 4 lanes once per block instead
-// of once per run (the terrain's runs are a few fragments long). The padding
-// lanes (weights 0: 0/0 is NaN, nothing traps) write up to 3 slots past the
+// then coordinates_rounded over the block, padded to 4 lanes once per block
+// instead of once per run (the terrain's runs are a few fragments long). The
+// padding lanes (weights 0; nothing traps) write up to 3 slots past the
 // triangle's last fragment, as coordinates_stepped does past a run.
-template <bool kUnitQ, class Div>
-void coordinates_blocked(const Coords& c0, const Coords& c1, const Coords& c2, Div by_a, const Coords& d,
-                         const FastRuns& runs, double* s, double* t) {
+template <bool kUnitQ, bool kExact, class Div>
+void coordinates_blocked(const Coords& c0, const Coords& c1, const Coords& c2, Div by_a, double inv_a, const Coords& d,
+                         const FastRuns& runs, float* s, float* t) {
   constexpr int kBlock = 256;
   alignas(32) double w0[kBlock + 3], w1[kBlock + 3], w2[kBlock + 3];
   int j = 0, out = 0;
   auto flush = [&] {
     const int n4 = (j + 3) & ~3;
     for (int i = j; i < n4; ++i) w0[i] = w1[i] = w2[i] = 0;
-    for (int i = 0; i < n4; ++i) coordinates_at<kUnitQ>(c0, c1, c2, by_a, w0[i], w1[i], w2[i], s[out + i], t[out + i]);
+    coordinates_rounded<kUnitQ, kExact>(c0, c1, c2, by_a, inv_a, w0, w1, w2, n4, j, s + out, t + out);
     out += j;
     j = 0;
   };
@@ -182,12 +307,28 @@ void coordinates_blocked(const Coords& c0, const Coords& c1, const Coords& c2, D
       // The run's fragments i0 .. i0 + m − 1 that fit in the block: a loop the
       // compiler vectorises (the same binary64 operations per fragment).
       const int m = std::min(runs.length[r] - i0, kBlock - j);
+#ifdef __AVX2__
+      // Four at a time, up to 3 lanes past the run (the block's 3 spare slots, or
+      // the next run's, which it then overwrites); the same mul and add per lane.
+      {
+        __m256d fi = _mm256_add_pd(_mm256_set1_pd(static_cast<double>(i0)), _mm256_setr_pd(0, 1, 2, 3));
+        const __m256d four = _mm256_set1_pd(4), F0 = _mm256_set1_pd(f[0]), F1 = _mm256_set1_pd(f[1]),
+                      F2 = _mm256_set1_pd(f[2]), D0 = _mm256_set1_pd(d[0]), D1 = _mm256_set1_pd(d[1]),
+                      D2 = _mm256_set1_pd(d[2]);
+        for (int i = 0; i < m; i += 4, fi = _mm256_add_pd(fi, four)) {
+          _mm256_storeu_pd(w0 + j + i, _mm256_add_pd(F0, _mm256_mul_pd(fi, D0)));
+          _mm256_storeu_pd(w1 + j + i, _mm256_add_pd(F1, _mm256_mul_pd(fi, D1)));
+          _mm256_storeu_pd(w2 + j + i, _mm256_add_pd(F2, _mm256_mul_pd(fi, D2)));
+        }
+      }
+#else
       for (int i = 0; i < m; ++i) {
         const double fi = static_cast<double>(i0 + i);
         w0[j + i] = f[0] + fi * d[0];
         w1[j + i] = f[1] + fi * d[1];
         w2[j + i] = f[2] + fi * d[2];
       }
+#endif
       j += m;
       i0 += m;
     }
@@ -198,7 +339,7 @@ void coordinates_blocked(const Coords& c0, const Coords& c1, const Coords& c2, D
 }  // namespace
 
 void texture_coordinates(const std::array<const WindowVertex*, 3>& tv, int u, const TriangleCoverage& cov,
-                         const FastRuns& runs, double* s, double* t) {
+                         const FastRuns& runs, float* s, float* t) {
   const double a = static_cast<double>(cov.area);
   const auto& c0 = tv[0]->tcw[u];
   const auto& c1 = tv[1]->tcw[u];
@@ -216,10 +357,11 @@ void texture_coordinates(const std::array<const WindowVertex*, 3>& tv, int u, co
   const bool progression = candidate && ds.ok && dt.ok;
   const ByArea<true> by_pow2{a, 1 / a};
   if (exact && !progression) {  // no run can take the progression: the triangle's runs at once
-    if (pow2 && unit_q) coordinates_blocked<true>(c0, c1, c2, by_pow2, d, runs, s, t);
-    else if (pow2) coordinates_blocked<false>(c0, c1, c2, by_pow2, d, runs, s, t);
-    else if (unit_q) coordinates_blocked<true>(c0, c1, c2, ByArea<false>{a, 0}, d, runs, s, t);
-    else coordinates_blocked<false>(c0, c1, c2, ByArea<false>{a, 0}, d, runs, s, t);
+    const double inv_a = 1 / a;  // RN(1/A), for q = 1 (coordinates_rounded)
+    if (pow2 && unit_q) coordinates_blocked<true, true>(c0, c1, c2, by_pow2, inv_a, d, runs, s, t);
+    else if (pow2) coordinates_blocked<false, false>(c0, c1, c2, by_pow2, inv_a, d, runs, s, t);
+    else if (unit_q) coordinates_blocked<true, false>(c0, c1, c2, ByArea<false>{a, 0}, inv_a, d, runs, s, t);
+    else coordinates_blocked<false, false>(c0, c1, c2, ByArea<false>{a, 0}, inv_a, d, runs, s, t);
     return;
   }
   double ds_step = 0, dt_step = 0;
@@ -243,12 +385,12 @@ void texture_coordinates(const std::array<const WindowVertex*, 3>& tv, int u, co
         if (ds.exact_for(W) && dt.exact_for(W)) {
           double s0 = 0, t0 = 0;  // the reference's value at the run's first fragment
           coordinates_at<true>(c0, c1, c2, by_pow2, f[0], f[1], f[2], s0, t0);
-          double* so = s + off;
-          double* to = t + off;
+          float* so = s + off;
+          float* to = t + off;
           for (int i = 0; i < n4; ++i) {
             const double fi = static_cast<double>(i);
-            so[i] = s0 + fi * ds_step;
-            to[i] = t0 + fi * dt_step;
+            so[i] = static_cast<float>(s0 + fi * ds_step);
+            to[i] = static_cast<float>(t0 + fi * dt_step);
           }
           continue;
         }
@@ -261,7 +403,10 @@ void texture_coordinates(const std::array<const WindowVertex*, 3>& tv, int u, co
     for (int i = 0; i < n; ++i) {  // the reference's conversions of the int64 weights
       double wd[3];
       for (int k = 0; k < 3; ++k) wd[k] = static_cast<double>(w[k] + i * cov.dwdx[k]);
-      coordinates_at<false>(c0, c1, c2, ByArea<false>{a, 0}, wd[0], wd[1], wd[2], s[off + i], t[off + i]);
+      double sd = 0, td = 0;
+      coordinates_at<false>(c0, c1, c2, ByArea<false>{a, 0}, wd[0], wd[1], wd[2], sd, td);
+      s[off + i] = static_cast<float>(sd);
+      t[off + i] = static_cast<float>(td);
     }
   }
 }

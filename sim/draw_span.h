@@ -25,10 +25,10 @@ struct WindowVertex {
 unsigned coords_reuse_mask(const ShadingPlan& plan, const std::array<const WindowVertex*, 3>& tv);
 
 // s/q and t/q of unit u at the fragments of `runs` of a triangle (sim/draw_span.cpp):
-// the per-fragment path's binary64 values bit for bit. Writes runs.count values
-// to s and t, plus up to 3 scratch values past the end (s and t must hold
-// runs.count + 3).
+// the per-fragment path's binary64 values rounded to binary32, as the sampler
+// rounds them (sample_level), bit for bit. Writes runs.count values to s and t,
+// plus up to 3 scratch values past the end (s and t must hold runs.count + 3).
 void texture_coordinates(const std::array<const WindowVertex*, 3>& tv, int u, const TriangleCoverage& cov,
-                         const FastRuns& runs, double* s, double* t);
+                         const FastRuns& runs, float* s, float* t);
 
 }  // namespace ffsim

@@ -395,7 +395,7 @@ struct SpanLevel {
 // (texel bits + 2B <= 31), else std::uint64_t as in level_codes. Same value.
 // NC: stored components per texel (0: L.ncomp at run time).
 template <bool kLinear, bool kDirect, class U, int NC>
-void span_level(const SpanLevel& L, const double* s, const double* t, int n, std::uint16_t* out) {
+void span_level(const SpanLevel& L, const float* s, const float* t, int n, std::uint16_t* out) {
   const TextureImage& im = *L.im;
   const TextureParams& p = L.tex->params;
   const int nc = NC ? NC : L.ncomp, b = im.border;
@@ -414,7 +414,7 @@ void span_level(const SpanLevel& L, const double* s, const double* t, int n, std
   for (int f = 1; f < n && t_const; ++f) t_const = t[f] == t[0];
   LinearAxis<float> ay;
   for (int f = 0; f < n; ++f) {
-    const auto sf = static_cast<float>(s[f]), tf = static_cast<float>(t[f]);  // as sample_level
+    const float sf = s[f], tf = t[f];  // binary32, as sample_level rounds them
     if constexpr (!kLinear) {
       const std::uint16_t* q = at(nearest_index_pow2(sf, L.ws, p.wrap_s), nearest_index_pow2(tf, L.hs, p.wrap_t));
       for (int c = 0; c < nc; ++c) k[c] = q[c];
@@ -461,21 +461,21 @@ void span_level(const SpanLevel& L, const double* s, const double* t, int n, std
 // texel: (k·2^2B + 2^(2B−1)) >> 2B = k.
 constexpr int kAxisChunk = 64;
 
-void repeat_axis(const double* s, int n, int size, float two_b, std::int32_t* i0, std::int32_t* i1,
+void repeat_axis(const float* s, int n, int size, float two_b, std::int32_t* i0, std::int32_t* i1,
                  std::uint32_t* w) {
   const auto nf = static_cast<float>(size);
   const std::int32_t mask = size - 1;
   int f = 0;
 #ifdef __AVX2__
   // Eight fragments at a time, the same IEEE operations in lanes (GCC does not
-  // vectorise the loop below itself under -ftrapping-math): cvtpd_ps rounds to
-  // nearest like the cast, floor_ps is exact, mul and sub stay separate (no FMA),
-  // cvttps truncates like the casts (fl and the weight are integral or in range).
+  // vectorise the loop below itself under -ftrapping-math): floor_ps is exact,
+  // mul and sub stay separate (no FMA), cvttps truncates like the casts (fl and
+  // the weight are integral or in range).
   {
     const __m256 vnf = _mm256_set1_ps(nf), vhalf = _mm256_set1_ps(0.5f), vtwo_b = _mm256_set1_ps(two_b);
     const __m256i vexp = _mm256_set1_epi32(0x7f800000), vmask = _mm256_set1_epi32(mask), vone = _mm256_set1_epi32(1);
     for (; f + 8 <= n; f += 8) {
-      __m256 x = _mm256_set_m128(_mm256_cvtpd_ps(_mm256_loadu_pd(s + f + 4)), _mm256_cvtpd_ps(_mm256_loadu_pd(s + f)));
+      __m256 x = _mm256_loadu_ps(s + f);
       const __m256i inf_or_nan = _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_castps_si256(x), vexp), vexp);
       x = _mm256_andnot_ps(_mm256_castsi256_ps(inf_or_nan), x);  // non-finite -> +0
       x = _mm256_sub_ps(x, _mm256_floor_ps(x));
@@ -489,7 +489,7 @@ void repeat_axis(const double* s, int n, int size, float two_b, std::int32_t* i0
   }
 #endif
   for (; f < n; ++f) {
-    float x = static_cast<float>(s[f]);
+    float x = s[f];
     // isfinite(x) ? x : 0, from the exponent bits (no floating compare: a select)
     x = (std::bit_cast<std::uint32_t>(x) & 0x7f800000u) != 0x7f800000u ? x : 0.0f;
     x = x - std::floor(x);
@@ -504,7 +504,7 @@ void repeat_axis(const double* s, int n, int size, float two_b, std::int32_t* i0
 }
 
 template <int NC>
-void span_linear_repeat(const SpanLevel& L, const double* s, const double* t, int n, std::uint16_t* out) {
+void span_linear_repeat(const SpanLevel& L, const float* s, const float* t, int n, std::uint16_t* out) {
   const TextureImage& im = *L.im;
   const int nc = NC ? NC : L.ncomp, b = im.border;
   const std::uint16_t* codes = im.codes.data();
@@ -515,9 +515,9 @@ void span_linear_repeat(const SpanLevel& L, const double* s, const double* t, in
   const float two_b = std::ldexp(1.0f, L.B);
   // One t for the span (bit for bit; no early exit, so the loop vectorises):
   // its axis is then computed once. (±0 differ in bits: computed per fragment.)
-  std::uint64_t t_varies = 0;
-  const auto t0 = std::bit_cast<std::uint64_t>(t[0]);
-  for (int f = 1; f < n; ++f) t_varies |= std::bit_cast<std::uint64_t>(t[f]) ^ t0;
+  std::uint32_t t_varies = 0;
+  const auto t0 = std::bit_cast<std::uint32_t>(t[0]);
+  for (int f = 1; f < n; ++f) t_varies |= std::bit_cast<std::uint32_t>(t[f]) ^ t0;
   const bool t_const = t_varies == 0;
   alignas(32) std::int32_t x0[kAxisChunk], x1[kAxisChunk], y0[kAxisChunk], y1[kAxisChunk];
   alignas(32) std::uint32_t wx[kAxisChunk], wy[kAxisChunk];
@@ -761,7 +761,7 @@ void span_linear_repeat(const SpanLevel& L, const double* s, const double* t, in
 
 }  // namespace
 
-void sample_span_fixed(const TextureObject& tex, int dims, const double* s, const double* t, int n,
+void sample_span_fixed(const TextureObject& tex, int dims, const float* s, const float* t, int n,
                        const SampleFormat& fmt, std::uint16_t* out) {
   SpanLevel L;
   L.tex = &tex;

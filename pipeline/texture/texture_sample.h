@@ -85,9 +85,10 @@ bool sample_span_supported(const TextureObject& tex, int dims, const SampleForma
 // For every i < n: the register-layout codes of
 // sample_texture(tex, dims, s[i], t[i], λ, fmt) (any λ), 4 per fragment, at the
 // base level's bits, into out[4i..4i+3]. Same operations, in the same order, as
-// sample_level (binary32 coordinates, the same weights and rounding); only the
-// per-fragment work that does not depend on the coordinates is hoisted.
-void sample_span_fixed(const TextureObject& tex, int dims, const double* s, const double* t, int n,
+// sample_level, which rounds its binary64 s and t to binary32 first: s and t
+// here are those binary32 values (the same weights and rounding follow); only
+// the per-fragment work that does not depend on the coordinates is hoisted.
+void sample_span_fixed(const TextureObject& tex, int dims, const float* s, const float* t, int n,
                        const SampleFormat& fmt, std::uint16_t* out);
 
 // The base-format expansion above applied to stored components (`comps` in the

@@ -99,7 +99,9 @@ void compare_sampling(unsigned seed, int iterations, bool repeat_linear = false)
                                                  : random_coord(g, hs);
     }
     std::vector<std::uint16_t> out(4 * static_cast<std::size_t>(n));
-    sample_span_fixed(tex, 2, s.data(), t.data(), n, fmt, out.data());
+    // The span sampler takes the binary32 values sample_texture rounds s and t to.
+    const std::vector<float> sf(s.begin(), s.end()), tf(t.begin(), t.end());
+    sample_span_fixed(tex, 2, sf.data(), tf.data(), n, fmt, out.data());
     for (int f = 0; f < n; ++f) {
       const Texel want = sample_texture(tex, 2, s[static_cast<std::size_t>(f)], t[static_cast<std::size_t>(f)], 0.0, fmt);
       for (int c = 0; c < 4; ++c) {

@@ -483,7 +483,7 @@ TEST_CASE("fast draw: texture_coordinates bit for bit against the reference's fo
       length.push_back(static_cast<int>(run.weight.size()));
       count += length.back();
     }
-    std::vector<double> s(static_cast<std::size_t>(count) + 3), t(s.size());
+    std::vector<float> s(static_cast<std::size_t>(count) + 3), t(s.size());
     texture_coordinates(tv, 0, cov, FastRuns{first.data(), length.data(), static_cast<int>(runs.size()), count},
                         s.data(), t.data());
     std::size_t f = 0;
@@ -496,11 +496,105 @@ TEST_CASE("fast draw: texture_coordinates bit for bit against the reference's fo
           ref[j] = ref[j] / A / 1.0;
         }
         INFO("triangle ", k, " fragment ", f);
-        REQUIRE(std::bit_cast<std::uint64_t>(s[f]) == std::bit_cast<std::uint64_t>(ref[0]));
-        REQUIRE(std::bit_cast<std::uint64_t>(t[f]) == std::bit_cast<std::uint64_t>(ref[1]));
+        // The binary32 values the sampler rounds the reference's s/q, t/q to.
+        REQUIRE(std::bit_cast<std::uint32_t>(s[f]) == std::bit_cast<std::uint32_t>(static_cast<float>(ref[0])));
+        REQUIRE(std::bit_cast<std::uint32_t>(t[f]) == std::bit_cast<std::uint32_t>(static_cast<float>(ref[1])));
         ++f;
         ++compared;
       }
   }
   CHECK(compared > 25 * kCases * 100);
+}
+
+TEST_CASE("fast draw: texture_coordinates are the reference's binary64 s/q, t/q rounded to binary32, perspective and near rounding boundaries") {
+  // texture_coordinates approximates each quotient with one reciprocal and takes
+  // the reference's divisions only when the approximation cannot decide the
+  // binary32 value (draw_span.cpp, coordinates_rounded). Compared with the
+  // reference's formula as bits (±0 included): random perspective triangles
+  // (q/w varying), q = 1 on areas that are not powers of two, values out of the
+  // tested range (tiny, huge, zero, infinite, NaN; every vertex's q/w scaled by
+  // 2^±(195..240)), and coordinates built to put
+  // the quotient on or next to a binary32 rounding boundary (a 25-bit midpoint
+  // m times q), where only the fallback gives the right value.
+  SceneRng r(92);
+  const int S = 4;
+  int compared = 0, boundary = 0;
+  for (int k = 0; k < 72 * kCases; ++k) {
+    std::array<SnappedVertex, 3> v{};
+    for (auto& p : v) p = SnappedVertex{r.i(-40 << S, 200 << S), r.i(-40 << S, 200 << S)};
+    std::vector<CoverageRun> runs;
+    const TriangleCoverage cov = rasterize_triangle(v, S, -60, -60, 400, 400, [&](const TriangleCoverage&, const CoverageRun& run) {
+      if (runs.size() < 12) runs.push_back(run);
+    });
+    if (runs.empty()) continue;
+    const int kind = k % 6;
+    const bool unit_q = kind == 1;
+    // An odd integer in [2^24, 2^25) (binary32 holds the even ones there: it is a
+    // midpoint between two), scaled by a power of two.
+    const double m = (2 * std::floor(r.d(0x1p23, 0x1p24)) + 1) * std::ldexp(1.0, r.i(-30, 0));
+    auto special = [&]() -> double {
+      switch (r.i(0, 6)) {
+        case 0: return 0.0;
+        case 1: return -0.0;
+        case 2: return r.d(-1, 1) * 0x1p-230;
+        case 3: return r.d(-1, 1) * 0x1p230;
+        case 4: return INFINITY;
+        case 5: return NAN;
+        default: return r.d(-3, 3);
+      }
+    };
+    std::array<WindowVertex, 3> wv{};
+    for (auto& w : wv) {
+      const double q = unit_q ? 1.0 : kind == 2 ? static_cast<double>(r.i(1, 9)) : r.d(0.05, 20.0);
+      switch (kind) {
+        case 2:  // s = m·q, t = −m·q at every vertex: s/q lands on (or next to) the midpoint m
+          w.tcw[0] = {m * q, -m * q, q};
+          break;
+        case 3:  // special values mixed in
+          w.tcw[0] = {r.b(30) ? special() : r.d(-4, 4) * q, r.b(30) ? special() : r.d(-4, 4) * q, r.b(20) ? special() : q};
+          break;
+        case 4: {  // every value scaled far out: 1/v_2 outside [2^-190, 2^190], the reference's divisions
+          const double e = std::ldexp(1.0, r.b(50) ? r.i(195, 240) : -r.i(195, 240));
+          w.tcw[0] = {r.d(-4, 4) * q * e, r.d(-4, 4) * q * e, q * e};
+          break;
+        }
+        default: w.tcw[0] = {r.d(-4, 4) * q, r.d(-4, 4) * q, q}; break;
+      }
+    }
+    if (kind == 1 && r.b(50))  // q = 1 with s on the midpoint: v_0 / A = m exactly
+      for (auto& w : wv) w.tcw[0] = {m, m, 1.0};
+    const std::array<const WindowVertex*, 3> tv{&wv[0], &wv[1], &wv[2]};
+    std::vector<std::array<std::int64_t, 3>> first;
+    std::vector<int> length;
+    int count = 0;
+    for (const CoverageRun& run : runs) {
+      first.push_back(run.weight[0]);
+      length.push_back(static_cast<int>(run.weight.size()));
+      count += length.back();
+    }
+    std::vector<float> s(static_cast<std::size_t>(count) + 3), t(s.size());
+    texture_coordinates(tv, 0, cov, FastRuns{first.data(), length.data(), static_cast<int>(runs.size()), count},
+                        s.data(), t.data());
+    std::size_t f = 0;
+    const double A = static_cast<double>(cov.area);
+    for (const CoverageRun& run : runs)
+      for (const auto& w : run.weight) {
+        double sum[3] = {0.0, 0.0, 0.0};  // sim/draw.cpp's per-fragment sums, each / A, then s/q, t/q
+        for (int j = 0; j < 3; ++j) {
+          for (int q = 0; q < 3; ++q)
+            sum[j] += static_cast<double>(w[static_cast<std::size_t>(q)]) * wv[static_cast<std::size_t>(q)].tcw[0][static_cast<std::size_t>(j)];
+          sum[j] = sum[j] / A;
+        }
+        const double ref_s = sum[0] / sum[2], ref_t = sum[1] / sum[2];  // (q = 1: / (A / A) = / 1)
+        const auto want_s = static_cast<float>(ref_s), want_t = static_cast<float>(ref_t);
+        if (kind == 2 || kind == 1) boundary += std::fabs(static_cast<double>(want_s) - m) < 1e-6 * std::fabs(m);
+        INFO("triangle ", k, " kind ", kind, " fragment ", f, " reference s ", ref_s, " t ", ref_t);
+        REQUIRE(std::bit_cast<std::uint32_t>(s[f]) == std::bit_cast<std::uint32_t>(want_s));
+        REQUIRE(std::bit_cast<std::uint32_t>(t[f]) == std::bit_cast<std::uint32_t>(want_t));
+        ++f;
+        ++compared;
+      }
+  }
+  CHECK(compared > 20 * kCases * 60);
+  CHECK(boundary > kCases * 100);  // the boundary cases did occur
 }
