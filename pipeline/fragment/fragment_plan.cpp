@@ -477,6 +477,28 @@ void color_interleaved(std::uint16_t m, const std::uint16_t* in, std::uint16_t* 
 #endif
 }
 
+// Copy on listed pixels: the written channels of each surviving fragment stored,
+// nothing read. (color_interleaved's (s & w) | (d & ~w) with Copy's r = s is s on
+// the written channels of a surviving fragment and d elsewhere: the stores leave
+// every other code as it is.) kMask: the written channels, bit c for channel c.
+template <unsigned kMask>
+void copy_listed(const std::uint16_t* in, std::uint16_t* fb, ListPixels pixel, int n, const std::uint8_t* alive) {
+  for (int j = 0; j < n; ++j) {
+    if (!alive[j]) continue;
+    std::uint16_t* px = fb + 4 * pixel(j);
+    const std::uint16_t* s = in + 4 * static_cast<std::size_t>(j);
+    if constexpr (kMask == 0xF) {
+      std::memcpy(px, s, 4 * sizeof(std::uint16_t));
+    } else if constexpr (kMask == 0x7) {
+      std::memcpy(px, s, 2 * sizeof(std::uint16_t));
+      px[2] = s[2];
+    } else {
+      for (int c = 0; c < 4; ++c)
+        if (kMask & (1u << c)) px[c] = s[c];
+    }
+  }
+}
+
 // f(the operation as a compile-time constant), for an operation other than None.
 template <class F>
 void with_interleaved(Interleaved op, F f) {
@@ -505,6 +527,17 @@ void color_stage_fixed(const FragmentPlan& plan, const FragmentConstants& k, con
         std::uint16_t* px = fb + 4 * pixel(0);
         with_interleaved(op, [&](auto o) { color_interleaved_all<o.value>(m, in, px, 4 * n); });
         return;
+      }
+    }
+    if constexpr (std::is_same_v<Px, ListPixels>) {
+      if (op == Interleaved::Copy) {  // the paper's alpha-only and RGB passes without blending
+        const unsigned mask = (wmask[0] & 1u) | (wmask[1] & 2u) | (wmask[2] & 4u) | (wmask[3] & 8u);
+        switch (mask) {
+          case 0x8: return copy_listed<0x8>(in, fb, pixel, n, alive);
+          case 0x7: return copy_listed<0x7>(in, fb, pixel, n, alive);
+          case 0xF: return copy_listed<0xF>(in, fb, pixel, n, alive);
+          default: break;  // (other masks: color_interleaved)
+        }
       }
     }
     with_interleaved(op, [&](auto o) { color_interleaved<o.value>(m, in, fb, pixel, n, wmask, alive); });
