@@ -11,7 +11,9 @@
 // command that writes the framebuffer (a draw or a copy): a pass boundary for
 // --dump-each-pass, --explain and --probe. Irregular calls use `add` with a lambda.
 #pragma once
+#include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <functional>
 #include <limits>
 #include <map>
@@ -132,6 +134,14 @@ struct CommandDef {
   std::string name;  // "glClearColor"
   std::vector<ArgSpec> args;
   CommandFn call;
+  // A bound method whose parameters are all scalars (bool, integers, floating
+  // point): the same call straight from the step's packed arguments, without
+  // std::function and Args (the replay's vertex data is tens of thousands of such
+  // calls per frame; docs/performance.md 16). `method` holds the member function
+  // pointer it calls. Null for every other command: `call` then.
+  using PackedFn = void (*)(Context&, const PackedArg*, const void* method);
+  PackedFn packed_call = nullptr;
+  alignas(std::max_align_t) unsigned char method[2 * sizeof(void*)]{};
   bool is_pass = false;  // writes the framebuffer: a pass boundary
   bool explained = false;  // not a pass, but --explain reports after it (texture uploads)
   // glBegin, glEnd and the vertex-data calls between them: they change no state a
@@ -171,6 +181,14 @@ decltype(auto) convert(const Args& a, std::size_t k) {
   else if constexpr (std::is_same_v<T, std::vector<double>>) return static_cast<const std::vector<double>&>(a[k].list);
   else return static_cast<const Image&>(*a[k].image);
 }
+// convert's conversions of a scalar parameter, from a packed argument.
+template <class P>
+auto convert_packed(const PackedArg& a) {
+  using T = std::remove_cvref_t<P>;
+  if constexpr (std::is_same_v<T, bool>) return a.i != 0;
+  else if constexpr (std::is_floating_point_v<T>) return static_cast<T>(a.kind == ArgKind::Int ? static_cast<double>(a.i) : a.f);
+  else return static_cast<T>(a.i);
+}
 }  // namespace detail
 
 // Thrown while building a table when a binding is inconsistent (a programming
@@ -191,9 +209,20 @@ class CommandTable {
       throw BindError(name + ": " + std::to_string(args.size()) + " argument specs for a method with " +
                       std::to_string(sizeof...(P)) + " parameters");
     check_kinds<P...>(name, args);
-    return add(std::move(name), std::move(args), [fn](Context& c, const Args& a) {
+    CommandDef& d = add(std::move(name), std::move(args), [fn](Context& c, const Args& a) {
       call(c, fn, a, std::index_sequence_for<P...>{});
     });
+    if constexpr ((std::is_arithmetic_v<std::remove_cvref_t<P>> && ...)) {
+      using Fn = R (Context::*)(P...);
+      static_assert(sizeof(Fn) <= sizeof(d.method));
+      std::memcpy(d.method, &fn, sizeof fn);
+      d.packed_call = [](Context& c, const PackedArg* a, const void* method) {
+        Fn f;
+        std::memcpy(&f, method, sizeof f);
+        call_packed(c, f, a, std::index_sequence_for<P...>{});
+      };
+    }
+    return d;
   }
 
   // Another name for a bound command (an extension's entry point, glActiveTextureARB).
@@ -215,6 +244,10 @@ class CommandTable {
   template <class R, class... P, std::size_t... I>
   static void call(Context& c, R (Context::*fn)(P...), const Args& a, std::index_sequence<I...>) {
     (c.*fn)(detail::convert<P>(a, I)...);
+  }
+  template <class R, class... P, std::size_t... I>
+  static void call_packed(Context& c, R (Context::*fn)(P...), [[maybe_unused]] const PackedArg* a, std::index_sequence<I...>) {
+    (c.*fn)(detail::convert_packed<P>(a[I])...);
   }
 
   std::map<std::string, CommandDef> defs_;

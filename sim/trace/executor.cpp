@@ -57,23 +57,25 @@ class Runner {
       // Strips of one state drawn as one batch with threads (Context::set_defer_draws):
       // the pending draw is flushed before every step that is not vertex data.
       ctx.set_defer_draws(o_.threads > 1 && !o_.probe && !o_.explain && !o_.dump_each_pass);
+      // The loop reads each step's StepHot (32 bytes, contiguous); the 384-byte
+      // Step only where a call needs more than its packed scalar arguments, or
+      // for a message (docs/performance.md 16).
+      std::vector<StepHot> own;  // (a Program not made by the loader)
+      if (p_.hot.size() != p_.steps.size()) own = hot_steps(p_);
+      const std::vector<StepHot>& hot = own.empty() ? p_.hot : own;
       for (std::size_t k = 0; k < p_.steps.size() && r_.ok; ++k) {
+        const StepHot& h = hot[k];
         const Step& s = p_.steps[k];
-        // A step is 384 bytes and a frame replays tens of thousands of them: the
-        // fields read for every call (kind .. args, Step's first 40 bytes, which may
-        // straddle two lines) of the step 8 ahead are requested now, or each step's
-        // first load waits on memory (docs/performance.md 15.1).
-        if (k + 8 < p_.steps.size()) {
-          const char* ahead = reinterpret_cast<const char*>(&p_.steps[k + 8]);
-          __builtin_prefetch(ahead);
-          __builtin_prefetch(ahead + 39);
-        }
-        if (!(s.kind == StepKind::Call && s.def->vertex_data)) ctx.flush_deferred();
-        if (s.kind != StepKind::ExpectError) flush_errors();
+        if (!(h.kind == StepKind::Call && h.vertex_data)) ctx.flush_deferred();
+        if (h.kind != StepKind::ExpectError) flush_errors();
         if (!r_.ok) break;
-        if (!o_.outputs && s.kind != StepKind::Call && s.kind != StepKind::ExpectError) continue;
-        ctx.set_call_site_ref(s.where);  // p_.steps outlives the run
-        execute(ctx, s);
+        if (!o_.outputs && h.kind != StepKind::Call && h.kind != StepKind::ExpectError) continue;
+        ctx.set_call_site_ref(s.where);  // p_.steps outlives the run (the address only: s is not read)
+        if (h.packed_call && !(h.def->is_pass || (o_.explain && h.def->explained))) {
+          h.packed_call(ctx, p_.packed.data() + h.packed_at, h.def->method);  // execute's Call, without the Step
+        } else {
+          execute(ctx, s);
+        }
         ++r_.steps;
         collect_errors(ctx);
       }
@@ -108,7 +110,9 @@ class Runner {
     const Framebuffer& fb = ctx.framebuffer();
     switch (s.kind) {
       case StepKind::Call: {
-        s.def->call(ctx, Args(s.args, &memory_, p_.packed_args(s)));
+        const PackedArg* packed = p_.packed_args(s);
+        if (s.def->packed_call && packed) s.def->packed_call(ctx, packed, s.def->method);
+        else s.def->call(ctx, Args(s.args, &memory_, packed));
         if (s.is_pass()) after_pass(ctx, s);
         else if (o_.explain && s.def->explained) explain_call(ctx, s);
         break;

@@ -33,6 +33,21 @@ int Program::pass_count() const {
   return n;
 }
 
+std::vector<StepHot> hot_steps(const Program& p) {
+  std::vector<StepHot> hot(p.steps.size());
+  for (std::size_t k = 0; k < p.steps.size(); ++k) {
+    const Step& s = p.steps[k];
+    StepHot& h = hot[k];
+    h.kind = s.kind;
+    if (s.kind != StepKind::Call || !s.def) continue;
+    h.def = s.def;
+    h.packed_at = s.packed_at;
+    h.vertex_data = s.def->vertex_data;
+    if (p.packed_args(s)) h.packed_call = s.def->packed_call;
+  }
+  return hot;
+}
+
 std::pair<std::string, std::string> parse_set_argument(const std::string& arg) {
   const auto eq = arg.find('=');
   if (eq == std::string::npos || eq == 0)
@@ -93,6 +108,7 @@ class Loader {
       st.packed_at = static_cast<std::uint32_t>(prog_.packed.size());
       for (const ArgValue& v : st.args) prog_.packed.push_back({v.kind, v.i, v.f});
     }
+    prog_.hot = hot_steps(prog_);
     return std::move(prog_);
   }
 

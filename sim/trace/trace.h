@@ -54,6 +54,17 @@ struct Step {
   bool is_pass() const { return kind == StepKind::Call && def && def->is_pass; }
 };
 
+// What the replay loop reads of each step, contiguous: a Step is 384 bytes, and
+// a frame of the terrain replays 33000 of them, about 13 MB a frame; these are
+// 32 (docs/performance.md 16).
+struct StepHot {
+  const CommandDef* def = nullptr;               // Call
+  CommandDef::PackedFn packed_call = nullptr;    // Call: def->packed_call when its arguments are packed
+  std::uint32_t packed_at = kNotPacked;          // Call: as Step::packed_at
+  StepKind kind = StepKind::Call;
+  bool vertex_data = false;                      // Call: def->vertex_data
+};
+
 struct Param {
   std::string name;
   double default_value = 0;
@@ -80,6 +91,7 @@ struct Program {
   std::vector<Param> params;
   std::vector<Resource> resources;
   std::vector<Step> steps;
+  std::vector<StepHot> hot;        // one per step (hot_steps), made when loaded
   std::vector<PackedArg> packed;   // the calls' scalar arguments, in step order (Step::packed_at)
   std::vector<std::string> files;  // every trace file read, in order
   // The PackedArg of step s's arguments, or null (not a call, or not packed).
@@ -97,6 +109,9 @@ struct LoadOptions {
   std::string file_root;  // non-empty: every file read must lie under this directory
   const CommandTable* commands = nullptr;  // default: gl_commands()
 };
+
+// The StepHot of each of p's steps.
+std::vector<StepHot> hot_steps(const Program& p);
 
 // Throws TraceError.
 Program load_trace_file(const std::string& path, const LoadOptions& options);

@@ -6,9 +6,12 @@
 // glReadPixels is used by later calls and by `dump image`, and the explainers.
 #include <doctest/doctest.h>
 
+#include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <random>
 #include <set>
 #include <sstream>
 
@@ -448,4 +451,53 @@ TEST_CASE("trace bindings: expect enabled follows glEnable and glDisable of ever
                     "t.trace");
   CHECK(u.r.expect_failures.empty());
   CHECK(u.r.gl_errors.empty());
+}
+
+TEST_CASE("trace bindings: a scalar call from its packed arguments gets what the Args path gives") {
+  // The replay calls bound methods whose parameters are all scalars straight from
+  // the packed arguments (CommandDef::packed_call, docs/performance.md 16): the
+  // conversions must be convert's, for every argument kind and parameter type.
+  std::mt19937_64 g(7);
+  const ArgKind kinds[] = {ArgKind::Enum, ArgKind::Int, ArgKind::Float, ArgKind::Float32, ArgKind::Bool, ArgKind::Bitfield};
+  const double specials[] = {0.0, -0.0, 1e300, -1e-310, INFINITY, -INFINITY, NAN, 0.5, -3.75};
+  auto same = [](auto a, auto b) {
+    if constexpr (std::is_floating_point_v<decltype(a)>) return std::memcmp(&a, &b, sizeof a) == 0;
+    else return a == b;
+  };
+  for (int it = 0; it < 20000; ++it) {
+    ArgValue v;
+    v.kind = kinds[g() % std::size(kinds)];
+    v.i = static_cast<std::int64_t>(g() % 3 == 0 ? g() : g() % 2001) - (g() % 2 ? 1000 : 0);
+    v.f = g() % 3 == 0 ? specials[g() % std::size(specials)] : std::ldexp(static_cast<double>(g() % 100000) - 50000, static_cast<int>(g() % 40) - 20);
+    const std::vector<ArgValue> vs{v};
+    const Args args(vs);
+    const PackedArg p{v.kind, v.i, v.f};
+    CAPTURE(it);
+    CHECK(same(detail::convert<bool>(args, 0), detail::convert_packed<bool>(p)));
+    CHECK(same(detail::convert<int>(args, 0), detail::convert_packed<int>(p)));
+    CHECK(same(detail::convert<GLenum>(args, 0), detail::convert_packed<GLenum>(p)));
+    CHECK(same(detail::convert<float>(args, 0), detail::convert_packed<float>(p)));
+    CHECK(same(detail::convert<double>(args, 0), detail::convert_packed<double>(p)));
+  }
+  // Set on the scalar bindings only, and the call reaches the method with them.
+  const CommandTable& t = gl_commands();
+  REQUIRE(t.find("glViewport"));
+  REQUIRE(t.find("glTexImage2D"));
+  CHECK(bool(t.find("glViewport")->packed_call));
+  CHECK(bool(t.find("glVertex3d")->packed_call));
+  CHECK(!t.find("glTexImage2D")->packed_call);  // an image argument
+  Context a(Profile{}, 8, 8), b(Profile{}, 8, 8);
+  const CommandDef& vp = *t.find("glViewport");
+  std::vector<ArgValue> args(4);
+  std::vector<PackedArg> packed;
+  const std::int64_t box[4] = {1, -2, 5, 7};
+  for (std::size_t k = 0; k < 4; ++k) {
+    args[k].kind = ArgKind::Int;
+    args[k].i = box[k];
+    packed.push_back({ArgKind::Int, box[k], 0.0});
+  }
+  vp.call(a, Args(args));
+  vp.packed_call(b, packed.data(), vp.method);
+  CHECK(a.viewport_box() == std::array<int, 4>{1, -2, 5, 7});
+  CHECK(b.viewport_box() == a.viewport_box());
 }
