@@ -59,6 +59,14 @@ void Context::end() {
   in_begin_ = false;
   std::vector<ClipVertex> v;
   v.swap(begin_vertices_);
+  struct GiveBack {  // the vertices' storage back to begin_vertices_, emptied, however this ends
+    std::vector<ClipVertex>& v;
+    std::vector<ClipVertex>& to;
+    ~GiveBack() {
+      v.clear();
+      if (to.empty()) to.swap(v);  // (a glBegin's next vertices then reuse it: no growth per strip)
+    }
+  } give_back{v, begin_vertices_};
   const std::size_t n = v.size();
   // Deferred (set_defer_draws): the state lives in members, where the pending
   // batch's set-up points; it equals the pending batch's (only vertex data since).
