@@ -384,9 +384,18 @@ void Context::shade_group_runs(const DrawSetup& ds, FragmentSpan& span, int band
   // as with the runs one by one in order.
   const WriteRect& rect = fragment_current_constants_.rect;
   bool listed = ds.buffers.codes != nullptr;
-  for (int r = 0; r < runs.runs && listed; ++r) {
-    const int y = g.run_y[r], x0 = g.run_x0[r];
-    listed = y >= rect.y0 && y < rect.y1 && x0 >= rect.x0 && x0 + runs.length[r] <= rect.x1;
+  if (listed && runs.runs > 0) {
+    // The runs' bounding box inside the rectangle: four reductions without a
+    // branch per run (the compiler vectorises them), the same answer as every
+    // run tested in turn.
+    int y_lo = g.run_y[0], y_hi = g.run_y[0], x_lo = g.run_x0[0], x_hi = g.run_x0[0] + runs.length[0];
+    for (int r = 1; r < runs.runs; ++r) {
+      y_lo = std::min(y_lo, g.run_y[r]);
+      y_hi = std::max(y_hi, g.run_y[r]);
+      x_lo = std::min(x_lo, g.run_x0[r]);
+      x_hi = std::max(x_hi, g.run_x0[r] + runs.length[r]);
+    }
+    listed = y_lo >= rect.y0 && y_hi < rect.y1 && x_lo >= rect.x0 && x_hi <= rect.x1;
   }
   if (listed) {
     const std::uint32_t* pixel = g.pixel;  // a replay's, or built here
