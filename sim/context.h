@@ -453,6 +453,7 @@ class Context {
   // their pixels.
   struct SpanGroupStats {
     std::uint64_t joined = 0, met = 0;
+    std::uint64_t coords_recorded = 0;  // groups whose texture coordinates came from a recording
   };
   SpanGroupStats span_group_stats() const;
 
@@ -690,12 +691,19 @@ class Context {
     std::size_t taken_words = 0;
     bool marked = false;
     std::uint64_t joined = 0, met = 0;  // span_group_stats
+    std::uint64_t coords_recorded = 0;  // span_group_stats
     // The raster cache: the recording being made (null: none), the index in the
     // sequence of the triangle being rasterized, and that index for each of
     // `triangles`.
     RasterRecording* recording = nullptr;
     int sequence_index = 0;
     std::vector<int> triangle_index;
+    // Texture coordinates and the raster cache, for the group being shaded
+    // (shade_group_runs sets them, clear_group empties them): a replay's recorded
+    // group whose coordinates may be taken, and the group being recorded, which
+    // keeps the first ones computed (docs/performance.md 16.6).
+    const RecordedGroup* coords_from = nullptr;
+    RecordedGroup* coords_to = nullptr;
     std::vector<TriangleRef> sequence;  // a band's triangles (flush_batch)
   };
   SpanScratch span_scratch_;
@@ -761,6 +769,7 @@ class Context {
     int runs, fragments;
     const std::uint32_t* depth = nullptr;
     const std::uint32_t* pixel = nullptr;
+    const RecordedGroup* from = nullptr;  // a replay's recorded group (its texture coordinates)
   };
   // The group's triangles are sc.triangles; `recorded` (or null) receives the
   // depth codes and pixel list computed.

@@ -325,6 +325,7 @@ Context::SpanGroupStats Context::span_group_stats() const {
   auto add = [&](const SpanScratch& sc) {
     g.joined += sc.joined;
     g.met += sc.met;
+    g.coords_recorded += sc.coords_recorded;
   };
   add(span_scratch_);
   for (const SpanScratch& b : band_scratch_) add(b);
@@ -339,6 +340,8 @@ void Context::clear_group(SpanScratch& sc) {
       if (rb.hi) sc.taken[rb.word + 1] &= ~rb.hi;
     }
   sc.marked = false;
+  sc.coords_from = nullptr;
+  sc.coords_to = nullptr;
   sc.triangle_index.clear();
   sc.group_fragments = 0;
   sc.weight.clear();
@@ -371,6 +374,8 @@ void Context::shade_group_runs(const DrawSetup& ds, FragmentSpan& span, int band
   const std::uint32_t* depth = has_depth ? g.depth : nullptr;
   if (has_depth && !depth) sc.depth.resize(static_cast<std::size_t>(runs.count));
   for (int r = 0; r < runs.runs; ++r) prefetch_run(ds.buffers, fb_.width(), fb_.height(), g.run_y[r], g.run_x0[r], runs.length[r]);
+  sc.coords_from = g.from;
+  sc.coords_to = recorded;
   shade_runs_fast(*ds.st, *ds.plan, sc.triangles.data(), static_cast<int>(sc.triangles.size()), runs, ds.flat, ds.shade,
                   sc.codes.data(), has_depth && !depth ? sc.depth.data() : nullptr, sc);
   if (has_depth && !depth) {

@@ -120,6 +120,7 @@ void Context::replay_sequence(const DrawSetup& ds, const std::vector<TriangleRef
                    static_cast<int>(g.run_length.size()), g.fragments};
     runs.depth = g.depth.empty() ? nullptr : g.depth.data();
     runs.pixel = g.pixel.empty() ? nullptr : g.pixel.data();
+    runs.from = &g;
     shade_group_runs(ds, span, band, runs, nullptr);
   }
   sc.joined += rec.joined;

@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #ifdef __AVX2__
 #include <immintrin.h>
 #endif
@@ -457,10 +458,40 @@ void Context::shade_runs_fast(const ShadingState& st, const ShadingPlan& plan, c
   // s/q and t/q of unit u into sc.s, sc.t. texture_coordinates writes up to 3
   // slots past a triangle's last run: into the next triangle's, which that one
   // then overwrites, or into the 3 spare slots after the last.
-  auto coordinates = [&](int u) {
+  auto compute_coordinates = [&](int u) {
     each([&](const GroupTriangle& g, const FastRuns& r, std::size_t off) {
       texture_coordinates(g.tv, u, g.cov, r, sc.s.data() + off, sc.t.data() + off);
     });
+  };
+  // Unit u's s/q, t/q: a replay's recorded ones when every triangle of the group
+  // has, for unit u, the bits the recording's had (texture_coordinates is a
+  // function of those bits, the coverage and the runs, which a replay shares);
+  // else computed, and kept by a recording that has none yet.
+  const float* s_of = nullptr;  // (set by the first sampled unit's coordinates)
+  const float* t_of = nullptr;
+  auto coordinates = [&](int u) {
+    const RecordedGroup* from = sc.coords_from;
+    bool recorded = from && from->s.size() == N + 3 && from->tcw.size() == static_cast<std::size_t>(triangles);
+    for (int i = 0; i < triangles && recorded; ++i)
+      for (std::size_t k = 0; k < 3 && recorded; ++k)
+        recorded = std::memcmp(tris[i].tv[k]->tcw[static_cast<std::size_t>(u)].data(), from->tcw[static_cast<std::size_t>(i)][k].data(),
+                               sizeof(double) * 3) == 0;
+    if (recorded) {
+      s_of = from->s.data();
+      t_of = from->t.data();
+      ++sc.coords_recorded;
+      return;
+    }
+    compute_coordinates(u);
+    s_of = sc.s.data();
+    t_of = sc.t.data();
+    if (RecordedGroup* to = sc.coords_to; to && to->s.empty()) {
+      to->s.assign(sc.s.begin(), sc.s.begin() + static_cast<std::ptrdiff_t>(N + 3));
+      to->t.assign(sc.t.begin(), sc.t.begin() + static_cast<std::ptrdiff_t>(N + 3));
+      to->tcw.resize(static_cast<std::size_t>(triangles));
+      for (int i = 0; i < triangles; ++i)
+        for (std::size_t k = 0; k < 3; ++k) to->tcw[static_cast<std::size_t>(i)][k] = tris[i].tv[k]->tcw[static_cast<std::size_t>(u)];
+    }
   };
   auto colors = [&](bool secondary, std::uint16_t* to) {
     each([&](const GroupTriangle& g, const FastRuns& r, std::size_t off) {
@@ -492,8 +523,7 @@ void Context::shade_runs_fast(const ShadingState& st, const ShadingPlan& plan, c
     sc.s.resize(N + 3);  // (texture_coordinates writes up to 3 slots past the last run)
     sc.t.resize(N + 3);
     coordinates(replace_unit);
-    sample_span_fixed(*st.units[replace_unit].texture, st.units[replace_unit].dims, sc.s.data(), sc.t.data(), n,
-                      st.sample, out);
+    sample_span_fixed(*st.units[replace_unit].texture, st.units[replace_unit].dims, s_of, t_of, n, st.sample, out);
     return;
   }
   colors(false, out);  // the primary colour, shaded in place
@@ -517,8 +547,7 @@ void Context::shade_runs_fast(const ShadingState& st, const ShadingPlan& plan, c
     if (!plan.sample[u]) continue;
     if (!(reuse & (1u << u))) coordinates(u);
     sc.texels[u].resize(4 * N);
-    sample_span_fixed(*st.units[u].texture, st.units[u].dims, sc.s.data(), sc.t.data(), n, st.sample,
-                      sc.texels[u].data());
+    sample_span_fixed(*st.units[u].texture, st.units[u].dims, s_of, t_of, n, st.sample, sc.texels[u].data());
   }
   auto texel_bits = [&](int u) {
     const TextureObject& tex = *st.units[u].texture;

@@ -40,6 +40,14 @@ struct RecordedGroup {
   int fragments = 0;
   std::vector<std::uint32_t> depth;
   std::vector<std::uint32_t> pixel;  // y·width + x per fragment, 7 spare (empty: not written by list)
+  // The first sampled unit's s/q, t/q as the span path computed them (binary32,
+  // one per fragment, 3 spare), and each triangle's s/w, t/w, q/w at its three
+  // vertices for that unit; empty when the recording drew no texture. A replay
+  // whose triangles have those same bits for a unit takes these values instead
+  // of computing them (docs/performance.md 16.6): texture_coordinates is a
+  // function of exactly those bits, the coverage and the runs.
+  std::vector<float> s, t;
+  std::vector<std::array<std::array<double, 3>, 3>> tcw;
 };
 
 // A run of kLongRun fragments or more, shaded on its own.

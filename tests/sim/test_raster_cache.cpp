@@ -5,9 +5,11 @@
 // those of the same scene with the cache off and of the per-fragment reference.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <array>
 #include <vector>
 
+#include "draw_test_util.h"
 #include "fast_scene.h"
 #include "sim/raster_cache.h"
 
@@ -190,6 +192,82 @@ TEST_CASE("raster cache: a replay needs the same positions, depths and pattern o
   strip(0.25, kSame);
   CHECK(c.raster_cache().hits() == 3);
   CHECK(buffer_hashes(c) == buffer_hashes(off));
+}
+
+TEST_CASE("raster cache: a replay takes the recorded texture coordinates only where every triangle's match") {
+  // A recording keeps the first texture coordinates its groups computed, with
+  // each triangle's s/w, t/w, q/w (docs/performance.md 16.6). Passes over one
+  // mesh (the same positions and depths: every pass after the first a replay)
+  // with the texture coordinates of the recording, shifted at every vertex,
+  // shifted at a few vertices only (groups whose triangles partly match), or
+  // moved by the texture matrix; each pass is added to the colour buffer, so every
+  // pass's texels show. Against the same passes with the cache off, and the
+  // per-fragment reference, 1 and 2 threads.
+  std::uint64_t taken = 0;
+  for (int threads : {1, 2})
+    for (std::uint32_t seed = 40; seed < 46; ++seed) {
+      INFO("threads ", threads, " seed ", seed);
+      Context cached(profile_named("geforce256"), kW, kH), uncached(profile_named("geforce256"), kW, kH),
+          reference(profile_named("geforce256"), kW, kH);
+      uncached.set_raster_cache(false);
+      reference.set_fast_paths(false);
+      for (Context* x : {&cached, &uncached, &reference}) {
+        x->set_threads(threads);
+        SceneRng r(seed);
+        random_clear_and_projection(*x, r, 0.3);
+        ortho_window(*x);  // every vertex inside the view volume (one thread draws shared vertices by the cache)
+        const int cx = r.i(8, 20), cy = r.i(6, 14);
+        std::vector<MeshVertex> mesh = jittered_grid(r, cx, cy);
+        for (MeshVertex& v : mesh) {
+          v.x = std::clamp(v.x, 1.0, kW - 1.0);
+          v.y = std::clamp(v.y, 1.0, kH - 1.0);
+        }
+        for (int u = 0; u < 2; ++u) {
+          random_texture(*x, r, u, static_cast<std::uint32_t>(1 + u));
+          for (GLenum f : {gl::TEXTURE_MIN_FILTER, gl::TEXTURE_MAG_FILTER}) x->texParameteri(gl::TEXTURE_2D, f, gl::LINEAR);
+        }
+        x->activeTexture(gl::TEXTURE0);
+        x->enable(gl::BLEND);
+        x->blendFunc(gl::ONE, gl::ONE);
+        x->disable(gl::DEPTH_TEST);
+        for (int pass = 0; pass < 6; ++pass) {
+          enum { kRecorded, kAllShifted, kSomeShifted, kTextureMatrix };
+          const int mode = pass == 0 ? kRecorded : r.i(0, 3);
+          x->matrixMode(gl::TEXTURE);
+          for (int u = 0; u < 2; ++u) {
+            x->activeTexture(gl::TEXTURE0 + static_cast<GLenum>(u));
+            x->loadIdentity();
+            if (mode == kTextureMatrix) x->translate(0.31, -0.17, 0);
+          }
+          x->matrixMode(gl::MODELVIEW);
+          x->activeTexture(gl::TEXTURE0);
+          std::size_t index = 0;
+          auto vertex = [&](const MeshVertex& v) {
+            const bool shift = mode == kAllShifted || (mode == kSomeShifted && index++ % 7 == 3);
+            const double ds = shift ? 0.37 : 0.0;
+            x->color4(v.color[0], v.color[1], v.color[2], 0.25);
+            x->multiTexCoord4(gl::TEXTURE0, v.tc0[0] + ds, v.tc0[1], v.tc0[2], v.tc0[3]);
+            x->multiTexCoord4(gl::TEXTURE1, v.tc1[0] + ds, v.tc1[1], v.tc1[2], v.tc1[3]);
+            x->vertex3(v.x, v.y, v.z);
+          };
+          for (int j = 0; j < cy; ++j) {
+            x->begin(gl::TRIANGLE_STRIP);
+            for (int i = 0; i <= cx; ++i) {
+              vertex(mesh[static_cast<std::size_t>((j + 1) * (cx + 1) + i)]);
+              vertex(mesh[static_cast<std::size_t>(j * (cx + 1) + i)]);
+            }
+            x->end();
+          }
+        }
+      }
+      REQUIRE(buffer_hashes(cached) == buffer_hashes(uncached));
+      REQUIRE(buffer_hashes(cached) == buffer_hashes(reference));
+      CHECK(cached.raster_cache().hits() > 0);
+      CHECK(uncached.span_group_stats().coords_recorded == 0);
+      taken += cached.span_group_stats().coords_recorded;
+    }
+  MESSAGE("groups that took recorded coordinates: " << taken);
+  CHECK(taken > 100);
 }
 
 TEST_CASE("raster cache: keys are compared whole, and the cache stays within its byte bound") {
