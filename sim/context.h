@@ -549,7 +549,6 @@ class Context {
   bool in_begin_ = false;
   GLenum begin_mode_ = gl::TRIANGLES;
   std::vector<ClipVertex> begin_vertices_;
-  std::array<bool, kMaxTextureUnits> texture_identity_{};  // inside glBegin/glEnd: texture matrix u is the identity
   std::array<int, 4> viewport_{0, 0, fb_.width(), fb_.height()};  // x, y, width, height (§2.10.1: the window)
   double depth_near_ = 0, depth_far_ = 1;
   GLenum shade_model_ = gl::SMOOTH;

@@ -4,7 +4,6 @@
 // sim/draw.cpp (clipping, rasterization, shading).
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <initializer_list>
 
 #include "pipeline/gl/enum_names.h"
@@ -50,11 +49,6 @@ void Context::begin(GLenum mode) {
   in_begin_ = true;
   begin_mode_ = mode;
   begin_vertices_.clear();
-  // The texture matrices cannot change before glEnd (every matrix command is an
-  // error inside glBegin/glEnd): which are the identity, bit for bit, is known now.
-  static const glm::dmat4 identity(1.0);
-  for (std::size_t u = 0; u < texture_identity_.size(); ++u)
-    texture_identity_[u] = std::memcmp(&texture_matrix_[u].top(), &identity, sizeof identity) == 0;
 }
 
 void Context::end() {
@@ -188,9 +182,7 @@ ClipVertex Context::make_vertex(const glm::dvec4& object) const {
   }
   for (int u = 0; u < kMaxTextureUnits; ++u) {
     const auto& tc = current_.texcoord[u];
-    const glm::dvec4 v(tc[0], tc[1], tc[2], tc[3]);
-    // (texture_identity_ holds between glBegin and glEnd only; glRasterPos multiplies)
-    cv.texcoord[u] = in_begin_ && texture_identity_[static_cast<std::size_t>(u)] ? identity_times(v) : texture_matrix_[u].top() * v;
+    cv.texcoord[u] = texture_matrix_[u].top() * glm::dvec4(tc[0], tc[1], tc[2], tc[3]);
   }
   return cv;
 }

@@ -60,12 +60,4 @@ glm::dmat4 frustum_matrix(double l, double r, double b, double t, double n, doub
   return m;
 }
 
-glm::dvec4 identity_times(const glm::dvec4& v) {
-  if (!(std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]) && std::isfinite(v[3])))
-    return glm::dmat4(1.0) * v;
-  const bool all_negative = std::signbit(v[0]) && std::signbit(v[1]) && std::signbit(v[2]) && std::signbit(v[3]);
-  const double zero = all_negative ? -0.0 : 0.0;
-  return {v[0] != 0 ? v[0] : zero, v[1] != 0 ? v[1] : zero, v[2] != 0 ? v[2] : zero, v[3] != 0 ? v[3] : zero};
-}
-
 }  // namespace ffsim

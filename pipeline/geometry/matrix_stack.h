@@ -37,15 +37,6 @@ class MatrixStack {
   std::vector<glm::dmat4> stack_;
 };
 
-// glm::dmat4(1.0) * v bit for bit, without its 16 multiplications (the paper's
-// texture matrices are the identity: every vertex's coordinates pass through).
-// GLM forms each component as (m0·v0 + m1·v1) + (m2·v2 + m3·v3): with the identity
-// one term is the component itself and the others are zeros carrying the other
-// components' signs (0·x), so a finite component is itself, and a zero one is −0
-// only when all four sign bits are set (RN gives −0 for a sum of zeros only when
-// both are −0). A non-finite component (0·inf is NaN) takes the product.
-glm::dvec4 identity_times(const glm::dvec4& v);
-
 // The matrices GL121 §2.10.2 defines, as column-major binary64 (exact spec formulas).
 glm::dmat4 rotate_matrix(double angle_degrees, double x, double y, double z);  // axis normalised; zero axis -> identity
 glm::dmat4 translate_matrix(double x, double y, double z);
