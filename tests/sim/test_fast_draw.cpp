@@ -445,6 +445,28 @@ TEST_CASE("fast draw: a window over the group bitmap's size (a group per triangl
   CHECK(p.fast.span_group_stats().joined == 0);
 }
 
+namespace {
+// texture_coordinates of unit 0 for a triangle's runs (as the span path hands
+// them over: first weights and lengths), into s and t (with their 3 spare slots).
+void span_coordinates(const std::array<WindowVertex, 3>& wv, const TriangleCoverage& cov,
+                      const std::vector<CoverageRun>& runs, std::vector<float>& s, std::vector<float>& t) {
+  const std::array<const WindowVertex*, 3> tv{&wv[0], &wv[1], &wv[2]};
+  std::vector<std::array<std::int64_t, 3>> first;
+  std::vector<int> length;
+  int count = 0;
+  for (const CoverageRun& run : runs) {
+    first.push_back(run.weight[0]);
+    length.push_back(static_cast<int>(run.weight.size()));
+    count += length.back();
+  }
+  s.assign(static_cast<std::size_t>(count) + 3, 0.0f);
+  t.assign(s.size(), 0.0f);
+  texture_coordinates(tv, 0, cov, FastRuns{first.data(), length.data(), static_cast<int>(runs.size()), count},
+                      s.data(), t.data());
+}
+
+}  // namespace
+
 TEST_CASE("fast draw: texture_coordinates bit for bit against the reference's formula, dyadic coordinates on power-of-two areas") {
   // The exact progression V_0 + i·D (draw_span.cpp) is taken when every product
   // and partial sum is exact; over the bound (coordinates of up to 52 bits on
@@ -474,18 +496,8 @@ TEST_CASE("fast draw: texture_coordinates bit for bit against the reference's fo
     };
     std::array<WindowVertex, 3> wv{};
     for (auto& w : wv) w.tcw[0] = {dyadic(), dyadic(), 1.0};
-    const std::array<const WindowVertex*, 3> tv{&wv[0], &wv[1], &wv[2]};
-    std::vector<std::array<std::int64_t, 3>> first;
-    std::vector<int> length;
-    int count = 0;
-    for (const CoverageRun& run : runs) {
-      first.push_back(run.weight[0]);
-      length.push_back(static_cast<int>(run.weight.size()));
-      count += length.back();
-    }
-    std::vector<float> s(static_cast<std::size_t>(count) + 3), t(s.size());
-    texture_coordinates(tv, 0, cov, FastRuns{first.data(), length.data(), static_cast<int>(runs.size()), count},
-                        s.data(), t.data());
+    std::vector<float> s, t;
+    span_coordinates(wv, cov, runs, s, t);
     std::size_t f = 0;
     const double A = static_cast<double>(cov.area);
     for (const CoverageRun& run : runs)
@@ -563,18 +575,8 @@ TEST_CASE("fast draw: texture_coordinates are the reference's binary64 s/q, t/q 
     }
     if (kind == 1 && r.b(50))  // q = 1 with s on the midpoint: v_0 / A = m exactly
       for (auto& w : wv) w.tcw[0] = {m, m, 1.0};
-    const std::array<const WindowVertex*, 3> tv{&wv[0], &wv[1], &wv[2]};
-    std::vector<std::array<std::int64_t, 3>> first;
-    std::vector<int> length;
-    int count = 0;
-    for (const CoverageRun& run : runs) {
-      first.push_back(run.weight[0]);
-      length.push_back(static_cast<int>(run.weight.size()));
-      count += length.back();
-    }
-    std::vector<float> s(static_cast<std::size_t>(count) + 3), t(s.size());
-    texture_coordinates(tv, 0, cov, FastRuns{first.data(), length.data(), static_cast<int>(runs.size()), count},
-                        s.data(), t.data());
+    std::vector<float> s, t;
+    span_coordinates(wv, cov, runs, s, t);
     std::size_t f = 0;
     const double A = static_cast<double>(cov.area);
     for (const CoverageRun& run : runs)
