@@ -454,6 +454,7 @@ class Context {
   struct SpanGroupStats {
     std::uint64_t joined = 0, met = 0;
     std::uint64_t coords_recorded = 0;  // groups whose texture coordinates came from a recording
+    std::uint64_t depth_reused = 0;     // groups whose depth test took a replay's comparisons (RecordedGroup::depth_test)
   };
   SpanGroupStats span_group_stats() const;
 
@@ -692,6 +693,7 @@ class Context {
     bool marked = false;
     std::uint64_t joined = 0, met = 0;  // span_group_stats
     std::uint64_t coords_recorded = 0;  // span_group_stats
+    std::uint64_t depth_reused = 0;     // span_group_stats
     // The raster cache: the recording being made (null: none), the index in the
     // sequence of the triangle being rasterized, and that index for each of
     // `triangles`.

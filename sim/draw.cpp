@@ -220,7 +220,8 @@ Context::DrawSetup Context::draw_setup(const ShadingState& st, const ShadingPlan
     if (fb_.format().float_color()) ds.buffers.values = fb_.values().data();
     else ds.buffers.codes = fb_.codes().data();
     if (fb_.has_stencil()) ds.buffers.stencil = fb_.stencil().data();
-    if (fb_.has_depth()) ds.buffers.depth = fb_.depth().data();
+    // (each change is reported: write_span, shade_group_runs)
+    if (fb_.has_depth()) ds.buffers.depth = fb_.depth_untracked();
   }
   if (ds.bands && (!pool_ || pool_->threads() != threads_)) pool_ = std::make_shared<WorkerPool>(threads_);
   return ds;
@@ -289,7 +290,8 @@ void Context::write_span(const DrawSetup& ds, FragmentSpan& span, int band) {
     write_fragments(span);
   } else {  // write_fragments without the plan update and the probe (done, off), here or on a worker
     count_written(band, static_cast<std::uint64_t>(span.count), 0);
-    run_fragment_plan(*fragment_current_plan_, fragment_current_constants_, span, ds.buffers, fb_.width());
+    if (run_fragment_plan(*fragment_current_plan_, fragment_current_constants_, span, ds.buffers, fb_.width()))
+      fb_.depth_changed();
   }
 }
 
@@ -326,6 +328,7 @@ Context::SpanGroupStats Context::span_group_stats() const {
     g.joined += sc.joined;
     g.met += sc.met;
     g.coords_recorded += sc.coords_recorded;
+    g.depth_reused += sc.depth_reused;
   };
   add(span_scratch_);
   for (const SpanScratch& b : band_scratch_) add(b);
@@ -373,7 +376,21 @@ void Context::shade_group_runs(const DrawSetup& ds, FragmentSpan& span, int band
   // The depth codes: a replay's, or interpolated here.
   const std::uint32_t* depth = has_depth ? g.depth : nullptr;
   if (has_depth && !depth) sc.depth.resize(static_cast<std::size_t>(runs.count));
-  for (int r = 0; r < runs.runs; ++r) prefetch_run(ds.buffers, fb_.width(), fb_.height(), g.run_y[r], g.run_x0[r], runs.length[r]);
+  // A replay's depth comparisons (RecordedGroup::depth_test, used if the group is
+  // written by list): taken when made under this depth epoch and function and
+  // nothing would be stored; else made, and kept if this call stores nothing
+  // (they then hold for the unchanged buffer).
+  const FragmentPlanKey& key = fragment_current_plan_->key;
+  ListedDepthTest dt;
+  RecordedGroup::DepthComparisons* memo = nullptr;
+  if (g.from && key.depth && !key.stencil && g.depth == g.from->depth.data() && g.pixel == g.from->pixel.data()) {
+    memo = &g.from->depth_test;
+    if (memo->epoch == fb_.depth_epoch() && memo->func == key.depth_func && (!memo->would_store || !key.depth_write))
+      dt.known = memo->cmp.data();
+  }
+  FragmentBuffers ahead = ds.buffers;  // (the depth lines are not read with known comparisons)
+  if (dt.known) ahead.depth = nullptr;
+  for (int r = 0; r < runs.runs; ++r) prefetch_run(ahead, fb_.width(), fb_.height(), g.run_y[r], g.run_x0[r], runs.length[r]);
   sc.coords_from = g.from;
   sc.coords_to = recorded;
   shade_runs_fast(*ds.st, *ds.plan, sc.triangles.data(), static_cast<int>(sc.triangles.size()), runs, ds.flat, ds.shade,
@@ -420,8 +437,20 @@ void Context::shade_group_runs(const DrawSetup& ds, FragmentSpan& span, int band
       if (recorded) recorded->pixel = sc.pixel;
     }
     count_written(band, static_cast<std::uint64_t>(runs.count), static_cast<std::uint64_t>(runs.runs));
+    if (dt.known) ++sc.depth_reused;
+    if (memo && !dt.known) {
+      memo->epoch = 0;
+      memo->cmp.resize(static_cast<std::size_t>(runs.count));
+      dt.record = memo->cmp.data();
+    }
     run_fragment_plan_pixels(*fragment_current_plan_, fragment_current_constants_, sc.codes.data(), depth, pixel,
-                             runs.count, ds.buffers);
+                             runs.count, ds.buffers, &dt);
+    if (dt.stored) fb_.depth_changed();
+    if (memo && dt.recorded && !dt.stored) {
+      memo->epoch = fb_.depth_epoch();
+      memo->func = key.depth_func;
+      memo->would_store = dt.would_store;
+    }
     return;
   }
   for (int r = 0, off = 0; r < runs.runs; off += runs.length[r], ++r) {

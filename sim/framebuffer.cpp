@@ -53,6 +53,11 @@ Framebuffer::Framebuffer(const FramebufferFormat& format) : fmt_(format) {
   if (fmt_.depth_bits > 0) depth_.assign(n, 0);
 }
 
+std::uint64_t Framebuffer::next_epoch() {
+  static std::atomic<std::uint64_t> counter{0};
+  return counter.fetch_add(1, std::memory_order_relaxed) + 1;
+}
+
 std::uint32_t Framebuffer::color_max() const { return unorm_max(fmt_.color_bits); }
 std::uint32_t Framebuffer::stencil_max() const { return fmt_.stencil_bits ? unorm_max(fmt_.stencil_bits) : 0; }
 std::uint32_t Framebuffer::depth_max() const { return fmt_.depth_bits ? unorm_max(fmt_.depth_bits) : 0; }
@@ -112,6 +117,7 @@ void Framebuffer::clear_stencil(const Rect& r0, std::uint32_t value, std::uint32
 
 void Framebuffer::clear_depth(const Rect& r0, double depth01) {
   if (!has_depth()) return;
+  depth_changed();
   const Rect r = intersect(r0, bounds());
   const std::uint32_t code = unorm_from_double(std::clamp(depth01, 0.0, 1.0), fmt_.depth_bits);
   for (int y = r.y; y < r.y + r.height; ++y) std::fill_n(depth_.data() + index(r.x, y), r.width, code);

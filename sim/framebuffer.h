@@ -3,6 +3,7 @@
 // as in GL window coordinates); image files are flipped on write/read.
 #pragma once
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -59,8 +60,23 @@ class Framebuffer {
   const std::vector<double>& values() const { return values_; }
   std::vector<std::uint8_t>& stencil() { return stencil_; }
   const std::vector<std::uint8_t>& stencil() const { return stencil_; }
-  std::vector<std::uint32_t>& depth() { return depth_; }
+  // The depth codes. Taking them to write marks the buffer changed
+  // (depth_epoch); a writer that keeps the reference across draws calls
+  // depth_changed() after writing.
+  std::vector<std::uint32_t>& depth() {
+    depth_changed();
+    return depth_;
+  }
   const std::vector<std::uint32_t>& depth() const { return depth_; }
+  // The depth codes for a writer that reports each change through depth_changed
+  // (the draw path's fragment operations).
+  std::uint32_t* depth_untracked() { return depth_.data(); }
+
+  // A number naming the depth buffer's contents (docs/performance.md 17.1): a
+  // new one, never used before by any framebuffer, whenever they may change; a
+  // copy keeps it with the contents. Equal epochs mean equal depth codes.
+  std::uint64_t depth_epoch() const { return depth_epoch_.value.load(std::memory_order_relaxed); }
+  void depth_changed() { depth_epoch_.value.store(next_epoch(), std::memory_order_relaxed); }
 
   std::size_t index(int x, int y) const { return static_cast<std::size_t>(y) * fmt_.width + x; }
 
@@ -86,6 +102,18 @@ class Framebuffer {
   std::vector<double> values_;
   std::vector<std::uint8_t> stencil_;
   std::vector<std::uint32_t> depth_;
+  // (atomic: the threads' bands report their changes concurrently; copied as a value)
+  struct Epoch {
+    std::atomic<std::uint64_t> value{next_epoch()};
+    Epoch() = default;
+    Epoch(const Epoch& o) : value(o.value.load(std::memory_order_relaxed)) {}
+    Epoch& operator=(const Epoch& o) {
+      value.store(o.value.load(std::memory_order_relaxed), std::memory_order_relaxed);
+      return *this;
+    }
+  };
+  static std::uint64_t next_epoch();
+  Epoch depth_epoch_;
 };
 
 // Intersection of two rectangles (empty rectangles have width or height 0).

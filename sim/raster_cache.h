@@ -18,6 +18,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "pipeline/gl/enums.h"
 #include "pipeline/raster/triangle.h"
 
 namespace ffsim {
@@ -48,6 +49,19 @@ struct RecordedGroup {
   // function of exactly those bits, the coverage and the runs.
   std::vector<float> s, t;
   std::vector<std::array<std::array<double, 3>, 3>> tcw;
+  // The depth test's comparisons on this group's listed fragments (ListedDepthTest,
+  // docs/performance.md 17.1), made by a replay while the framebuffer's depth
+  // epoch was `epoch`, for `func`; `would_store`: some fragment passing them has
+  // a depth other than the stored one. A replay under the same epoch and
+  // function takes them instead of reading the depth buffer. Kept by replays of
+  // a const recording (a recording is replayed by one thread at a time: its band's).
+  struct DepthComparisons {
+    std::uint64_t epoch = 0;  // 0: none (epochs start at 1)
+    GLenum func = 0;
+    bool would_store = true;
+    std::vector<std::uint8_t> cmp;
+  };
+  mutable DepthComparisons depth_test;
 };
 
 // A run of kLongRun fragments or more, shaded on its own.

@@ -684,6 +684,15 @@ void color_stage(const FragmentPlan& plan, const FragmentConstants& k, const Fra
   }
 }
 
+// What a depth stage saw (ListedDepthTest): `cmp` (may be null) receives each
+// fragment's comparison z OP stored, alive or not; would_store whether one
+// passing the comparison has z != stored; stored whether a depth changed.
+struct DepthOutcome {
+  std::uint8_t* cmp = nullptr;
+  bool would_store = false;
+  bool stored = false;
+};
+
 // Stencil and depth tests with the stencil operations for a chunk: fragment j
 // has depth z[j] and lands on pixel(j); a failing fragment's `alive` is cleared.
 // The depth test alone (no stencil), for one comparison chosen outside the loop:
@@ -720,8 +729,9 @@ inline __m256i depth_lanes(__m256i a, __m256i b) {
 // the fragments done (a multiple of 8).
 template <GLenum F>
 int depth_only_listed8(bool write, const std::uint32_t* z, std::uint32_t* depth, const std::uint32_t* pixel, int n,
-                       std::uint8_t* alive) {
+                       std::uint8_t* alive, DepthOutcome& out) {
   int j = 0;
+  unsigned would_store = 0, stored = 0;
   for (; j + 8 <= n; j += 8) {
     // Pixel indices are below 2^26 (run_fragment_plan_pixels): the gather's
     // signed 32-bit indices hold them.
@@ -732,77 +742,106 @@ int depth_only_listed8(bool write, const std::uint32_t* z, std::uint32_t* depth,
     std::memcpy(&a8, alive + j, sizeof a8);
     const __m256i live = _mm256_cmpgt_epi32(_mm256_cvtepu8_epi32(_mm_cvtsi64_si128(static_cast<long long>(a8))),
                                             _mm256_setzero_si256());
-    const __m256i pass = _mm256_and_si256(live, depth_lanes<F>(zz, zb));
+    const __m256i test = depth_lanes<F>(zz, zb);
+    const __m256i pass = _mm256_and_si256(live, test);
     const auto bits = static_cast<unsigned>(_mm256_movemask_ps(_mm256_castsi256_ps(pass)));
     a8 = _pdep_u64(bits, 0x0101010101010101ull);  // one byte 0 or 1 per fragment
     std::memcpy(alive + j, &a8, sizeof a8);
+    // Passing the comparison with a depth other than the stored one: stored
+    // where the fragment is also alive.
+    const auto differs = static_cast<unsigned>(
+        _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_andnot_si256(_mm256_cmpeq_epi32(zz, zb), test))));
+    if (out.cmp) {
+      const std::uint64_t c8 = _pdep_u64(static_cast<unsigned>(_mm256_movemask_ps(_mm256_castsi256_ps(test))),
+                                         0x0101010101010101ull);
+      std::memcpy(out.cmp + j, &c8, sizeof c8);
+      would_store |= differs;
+    }
     if (write) {
-      const __m256i changed = _mm256_andnot_si256(_mm256_cmpeq_epi32(zz, zb), pass);
-      auto store = static_cast<unsigned>(_mm256_movemask_ps(_mm256_castsi256_ps(changed)));
+      auto store = differs & bits;
+      stored |= store;
       for (; store; store &= store - 1) {
         const int i = std::countr_zero(store);
         depth[pixel[j + i]] = z[j + i];
       }
     }
   }
+  out.would_store |= would_store != 0;
+  out.stored |= stored != 0;
   return j;
 }
 #endif
 
 template <class Px, class Cmp>
-void depth_only(bool write, const std::uint32_t* z, std::uint32_t* depth, Px pixel, int n, std::uint8_t* alive, Cmp cmp) {
+void depth_only(bool write, const std::uint32_t* z, std::uint32_t* depth, Px pixel, int n, std::uint8_t* alive,
+                DepthOutcome& out, Cmp cmp) {
+  bool would_store = false, stored = false;
   for (int j = 0; j < n; ++j) {
     const std::size_t p = pixel(j);
     const std::uint32_t zb = depth[p];
-    const bool pass = alive[j] && cmp(z[j], zb);
+    const bool test = cmp(z[j], zb);
+    const bool pass = alive[j] && test;
     alive[j] = pass;
+    if (out.cmp) out.cmp[j] = test;
+    would_store |= test && z[j] != zb;
+    stored |= pass && z[j] != zb;
     if (write) depth[p] = pass ? z[j] : zb;
   }
+  out.would_store |= would_store;
+  out.stored |= write && stored;
 }
 
 template <class Px>
 void depth_only_stage(GLenum func, bool write, const std::uint32_t* z, std::uint32_t* depth, Px pixel, int n,
-                      std::uint8_t* alive) {
+                      std::uint8_t* alive, DepthOutcome& out) {
 #if defined(__AVX2__) && defined(__BMI2__)
   if constexpr (std::is_same_v<Px, ListPixels>) {
     int done = 0;
     switch (func) {
-      case gl::LESS: done = depth_only_listed8<gl::LESS>(write, z, depth, pixel.pixel, n, alive); break;
-      case gl::EQUAL: done = depth_only_listed8<gl::EQUAL>(write, z, depth, pixel.pixel, n, alive); break;
-      case gl::LEQUAL: done = depth_only_listed8<gl::LEQUAL>(write, z, depth, pixel.pixel, n, alive); break;
-      case gl::GREATER: done = depth_only_listed8<gl::GREATER>(write, z, depth, pixel.pixel, n, alive); break;
-      case gl::NOTEQUAL: done = depth_only_listed8<gl::NOTEQUAL>(write, z, depth, pixel.pixel, n, alive); break;
-      case gl::GEQUAL: done = depth_only_listed8<gl::GEQUAL>(write, z, depth, pixel.pixel, n, alive); break;
-      case gl::ALWAYS: done = depth_only_listed8<gl::ALWAYS>(write, z, depth, pixel.pixel, n, alive); break;
+      case gl::LESS: done = depth_only_listed8<gl::LESS>(write, z, depth, pixel.pixel, n, alive, out); break;
+      case gl::EQUAL: done = depth_only_listed8<gl::EQUAL>(write, z, depth, pixel.pixel, n, alive, out); break;
+      case gl::LEQUAL: done = depth_only_listed8<gl::LEQUAL>(write, z, depth, pixel.pixel, n, alive, out); break;
+      case gl::GREATER: done = depth_only_listed8<gl::GREATER>(write, z, depth, pixel.pixel, n, alive, out); break;
+      case gl::NOTEQUAL: done = depth_only_listed8<gl::NOTEQUAL>(write, z, depth, pixel.pixel, n, alive, out); break;
+      case gl::GEQUAL: done = depth_only_listed8<gl::GEQUAL>(write, z, depth, pixel.pixel, n, alive, out); break;
+      case gl::ALWAYS: done = depth_only_listed8<gl::ALWAYS>(write, z, depth, pixel.pixel, n, alive, out); break;
       default: break;  // NEVER (and no other value reaches here): the loop below
     }
     // The remaining fragments (fewer than 8; all of them for NEVER) by the loops below.
     z += done;
     pixel.pixel += done;
     alive += done;
+    if (out.cmp) out.cmp += done;
     n -= done;
   }
 #endif
   switch (func) {  // test_func's table (test_func.h)
-    case gl::NEVER: std::fill_n(alive, n, std::uint8_t{0}); return;
-    case gl::LESS: return depth_only(write, z, depth, pixel, n, alive, [](std::uint32_t a, std::uint32_t b) { return a < b; });
-    case gl::EQUAL: return depth_only(write, z, depth, pixel, n, alive, [](std::uint32_t a, std::uint32_t b) { return a == b; });
-    case gl::LEQUAL: return depth_only(write, z, depth, pixel, n, alive, [](std::uint32_t a, std::uint32_t b) { return a <= b; });
-    case gl::GREATER: return depth_only(write, z, depth, pixel, n, alive, [](std::uint32_t a, std::uint32_t b) { return a > b; });
-    case gl::NOTEQUAL: return depth_only(write, z, depth, pixel, n, alive, [](std::uint32_t a, std::uint32_t b) { return a != b; });
-    case gl::GEQUAL: return depth_only(write, z, depth, pixel, n, alive, [](std::uint32_t a, std::uint32_t b) { return a >= b; });
-    case gl::ALWAYS: return depth_only(write, z, depth, pixel, n, alive, [](std::uint32_t, std::uint32_t) { return true; });
-    default: std::fill_n(alive, n, std::uint8_t{0}); return;
+    case gl::NEVER:
+      std::fill_n(alive, n, std::uint8_t{0});
+      if (out.cmp) std::fill_n(out.cmp, n, std::uint8_t{0});
+      return;
+    case gl::LESS: return depth_only(write, z, depth, pixel, n, alive, out, [](std::uint32_t a, std::uint32_t b) { return a < b; });
+    case gl::EQUAL: return depth_only(write, z, depth, pixel, n, alive, out, [](std::uint32_t a, std::uint32_t b) { return a == b; });
+    case gl::LEQUAL: return depth_only(write, z, depth, pixel, n, alive, out, [](std::uint32_t a, std::uint32_t b) { return a <= b; });
+    case gl::GREATER: return depth_only(write, z, depth, pixel, n, alive, out, [](std::uint32_t a, std::uint32_t b) { return a > b; });
+    case gl::NOTEQUAL: return depth_only(write, z, depth, pixel, n, alive, out, [](std::uint32_t a, std::uint32_t b) { return a != b; });
+    case gl::GEQUAL: return depth_only(write, z, depth, pixel, n, alive, out, [](std::uint32_t a, std::uint32_t b) { return a >= b; });
+    case gl::ALWAYS: return depth_only(write, z, depth, pixel, n, alive, out, [](std::uint32_t, std::uint32_t) { return true; });
+    default:
+      std::fill_n(alive, n, std::uint8_t{0});
+      if (out.cmp) std::fill_n(out.cmp, n, std::uint8_t{0});
+      return;
   }
 }
 
 template <class Px>
 void stencil_depth_stage(const FragmentPlanKey& key, const FragmentConstants& k, const std::uint32_t* z,
-                         const FragmentBuffers& b, Px pixel, int n, std::uint8_t* alive) {
+                         const FragmentBuffers& b, Px pixel, int n, std::uint8_t* alive, DepthOutcome& out) {
   if (!key.stencil) {
-    depth_only_stage(key.depth_func, key.depth_write, z, b.depth, pixel, n, alive);
+    depth_only_stage(key.depth_func, key.depth_write, z, b.depth, pixel, n, alive, out);
     return;
   }
+  out.stored |= key.depth && key.depth_write;  // (not tracked exactly with the stencil test)
   // The stencil test, then the depth test if enabled, with the stencil operations.
   const FragmentConstants::StencilTables& st = k.stencil_tables;
   if (st.valid && st.func == key.stencil_func && st.sfail == key.sfail && st.dpfail == key.dpfail &&
@@ -860,18 +899,19 @@ void check_span(const FragmentSpan& sp, bool fixed) {
 
 }  // namespace
 
-void run_fragment_plan(const FragmentPlan& plan, const FragmentConstants& k, const FragmentSpan& sp,
+bool run_fragment_plan(const FragmentPlan& plan, const FragmentConstants& k, const FragmentSpan& sp,
                        const FragmentBuffers& b, int width) {
   const FragmentPlanKey& key = plan.key;
-  if (key.nothing) return;
+  if (key.nothing) return false;
   const SpanRange range = scissor_span(k.rect, sp.y, sp.x0, sp.count);
-  if (range.empty()) return;
+  if (range.empty()) return false;
   const bool fixed = key.arith == Arithmetic::Fixed;
   check_span(sp, fixed);
   if (key.depth && sp.depth.size() < static_cast<std::size_t>(sp.count))
     throw std::invalid_argument("fragment span: the depth test is enabled but the span carries no depth");
   const std::size_t row = static_cast<std::size_t>(sp.y) * static_cast<std::size_t>(width);
   std::uint8_t alive[kChunk];
+  DepthOutcome depth_out;
   for (int start = range.begin; start < range.end; start += kChunk) {
     const int n = std::min(kChunk, range.end - start);
     std::fill_n(alive, n, std::uint8_t{1});
@@ -891,19 +931,31 @@ void run_fragment_plan(const FragmentPlan& plan, const FragmentConstants& k, con
     // Stencil and depth tests with the stencil operations.
     if (key.stencil || key.depth)
       stencil_depth_stage(key, k, key.depth ? sp.depth.data() + start : nullptr, b,
-                          RowPixels{row + static_cast<std::size_t>(sp.x0 + start)}, n, alive);
+                          RowPixels{row + static_cast<std::size_t>(sp.x0 + start)}, n, alive, depth_out);
     // Blending / logic op, dithering (identity), masked colour writes.
     if (plan.write_color) color_stage(plan, k, sp, b, row, start, n, alive, key.arith);
   }
+  return depth_out.stored;
 }
 
 void run_fragment_plan_pixels(const FragmentPlan& plan, const FragmentConstants& k, const std::uint16_t* codes,
-                              const std::uint32_t* depth, const std::uint32_t* pixel, int n, const FragmentBuffers& b) {
+                              const std::uint32_t* depth, const std::uint32_t* pixel, int n, const FragmentBuffers& b,
+                              ListedDepthTest* depth_test) {
   const FragmentPlanKey& key = plan.key;
+  if (depth_test) {
+    depth_test->recorded = false;
+    depth_test->would_store = false;
+    depth_test->stored = false;
+  }
   if (key.nothing || n <= 0) return;
   if (key.arith != Arithmetic::Fixed) throw std::invalid_argument("run_fragment_plan_pixels: fixed colour only");
   if (key.depth && depth == nullptr)
     throw std::invalid_argument("run_fragment_plan_pixels: the depth test is enabled but no depth was given");
+  // The depth test alone may take known comparisons or record them (ListedDepthTest).
+  const bool depth_alone = key.depth && !key.stencil;
+  const std::uint8_t* known = depth_alone && depth_test ? depth_test->known : nullptr;
+  std::uint8_t* record = depth_alone && depth_test && !known ? depth_test->record : nullptr;
+  DepthOutcome depth_out;
   std::uint8_t alive[kChunk];
   for (int start = 0; start < n; start += kChunk) {
     const int m = std::min(kChunk, n - start);
@@ -911,10 +963,20 @@ void run_fragment_plan_pixels(const FragmentPlan& plan, const FragmentConstants&
     const ListPixels px{pixel + start};
     std::fill_n(alive, m, std::uint8_t{1});
     if (key.alpha_func != 0) alpha_test_fixed(key.alpha_func, in, k.alpha_ref_code, m, alive);  // A_s OP ref
-    if (key.stencil || key.depth) stencil_depth_stage(key, k, key.depth ? depth + start : nullptr, b, px, m, alive);
+    if (depth_alone && known) {  // the comparisons known: the buffer is neither read nor written
+      for (int j = 0; j < m; ++j) alive[j] &= known[start + j];
+    } else if (key.stencil || key.depth) {
+      depth_out.cmp = record ? record + start : nullptr;
+      stencil_depth_stage(key, k, key.depth ? depth + start : nullptr, b, px, m, alive, depth_out);
+    }
     if (!plan.write_color) continue;
     if (k.color_max == 255) color_stage_fixed<255>(plan, k, in, b.codes, px, m, alive);
     else color_stage_fixed<0>(plan, k, in, b.codes, px, m, alive);
+  }
+  if (depth_test) {
+    depth_test->recorded = record != nullptr;
+    depth_test->would_store = record != nullptr && depth_out.would_store;
+    depth_test->stored = depth_out.stored;
   }
 }
 

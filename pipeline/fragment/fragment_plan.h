@@ -131,10 +131,31 @@ FragmentPlanKey fragment_plan_key(const FragmentOpsState& s, const FragmentTarge
 FragmentPlan build_fragment_plan(const FragmentPlanKey& key);
 FragmentConstants fragment_constants(const FragmentOpsState& s, const FragmentTarget& t);
 
+// The depth test's comparisons of a list of fragments, to be reused
+// (docs/performance.md 17.1). The depth test alone (no stencil test) makes a
+// fragment survive when it is alive and z OP stored holds: with the same
+// fragments (pixels and depth codes), the same function and the same stored
+// values, the comparisons are the same, and when no fragment passing them has a
+// depth other than the stored one (or depth writes are off) nothing is stored.
+struct ListedDepthTest {
+  // In: the comparisons (1: z OP stored) of an earlier call under exactly those
+  // conditions, one byte per fragment. The depth buffer is then not read or
+  // written. Used only when the plan has the depth test and no stencil test.
+  const std::uint8_t* known = nullptr;
+  // Out, when not `known`: the comparisons of this call into `record` (n bytes),
+  // for the depth test alone; `recorded` says whether they were written.
+  std::uint8_t* record = nullptr;
+  bool recorded = false;
+  bool would_store = false;  // out, when recorded: some fragment passing the comparison has z != stored
+  bool stored = false;       // out: a stored depth may have changed (exact for the depth test alone)
+};
+
 // Apply the per-fragment operations to a span. The span's colour is codes at
 // t.color_bits (fixed) or values (float); its depth holds one code per fragment
 // and may be empty only when the plan has no depth test (else std::invalid_argument).
-void run_fragment_plan(const FragmentPlan& plan, const FragmentConstants& k, const FragmentSpan& span,
+// Returns whether a stored depth may have changed (exact for the depth test
+// alone: some fragment stored a depth other than the one there).
+bool run_fragment_plan(const FragmentPlan& plan, const FragmentConstants& k, const FragmentSpan& span,
                        const FragmentBuffers& b, int width);
 // run_fragment_plan for n fragments of one primitive at distinct pixels, all
 // inside k.rect, in a fixed profile: fragment i has colour codes codes[4i .. 4i+3],
@@ -143,8 +164,10 @@ void run_fragment_plan(const FragmentPlan& plan, const FragmentConstants& k, con
 // the AVX2 loops use them as 32-bit gather indices). No fragment reads another's pixel, so the buffers end
 // as run_fragment_plan leaves them on the same fragments as row spans in any
 // order. Throws std::invalid_argument for float colour or a missing depth.
+// `depth_test` (may be null) takes known comparisons or records them.
 void run_fragment_plan_pixels(const FragmentPlan& plan, const FragmentConstants& k, const std::uint16_t* codes,
-                              const std::uint32_t* depth, const std::uint32_t* pixel, int n, const FragmentBuffers& b);
+                              const std::uint32_t* depth, const std::uint32_t* pixel, int n, const FragmentBuffers& b,
+                              ListedDepthTest* depth_test = nullptr);
 void run_fragment_ops_full(const FragmentOpsState& s, const FragmentTarget& t, const FragmentSpan& span,
                            const FragmentBuffers& b);
 

@@ -505,6 +505,103 @@ TEST_CASE("plan vs full path: listed pixels, the depth test alone, every functio
   CHECK(compared == 3 * 8 * 2 * 2 * 4);
 }
 
+TEST_CASE("listed pixels: the depth test's comparisons recorded, and reused without the depth buffer (ListedDepthTest)") {
+  // run_fragment_plan_pixels records each fragment's z OP stored (alive or not),
+  // whether a fragment passing it has z != stored, and whether a depth changed:
+  // checked against the comparisons computed here from the buffer before the
+  // call, every function, with and without depth writes, the alpha test and the
+  // stencil test (which records nothing), fragment counts with chunk tails. Given
+  // the comparisons as known (when nothing would be stored), the same call leaves
+  // the colour and stencil as without them and neither reads nor writes the
+  // depth buffer (a poisoned one stays as it was, and changes nothing).
+  std::mt19937 rng(779);
+  const FragmentTarget t{40, 20, Arithmetic::Fixed, 8, 8, 24};
+  int recorded = 0, would_store = 0, reused = 0;
+  for (const GLenum func : kFuncs)
+    for (const bool mask : {false, true})
+      for (const bool alpha : {false, true})
+        for (const bool stencil : {false, true})
+          for (int rep = 0; rep < 6; ++rep) {
+            INFO("func ", func, " mask ", mask, " alpha ", alpha, " stencil ", stencil, " rep ", rep);
+            FragmentOpsState s = random_state(rng, 8u | (alpha ? 2u : 0u) | (stencil ? 4u : 0u), t);
+            s.depth.func = func;
+            s.depth_mask = mask;
+            const FragmentPlan plan = plan_of(s, t);
+            const FragmentConstants k = fragment_constants(s, t);
+            std::vector<std::uint32_t> pixel(static_cast<std::size_t>(t.width * t.height));
+            for (std::size_t i = 0; i < pixel.size(); ++i) pixel[i] = static_cast<std::uint32_t>(i);
+            std::shuffle(pixel.begin(), pixel.end(), rng);
+            pixel.resize(1 + rng() % (rep % 2 ? 12 : pixel.size()));  // (a few: all in the 8-wide loop's tail)
+            const int n = static_cast<int>(pixel.size());
+            Buffers before(t), frags({n, 1, Arithmetic::Fixed, 8, 0, 24});
+            randomize(rng, before);
+            randomize(rng, frags);  // (colours and depths from small sets: equal depths often)
+            Buffers plain = before, rec = before;
+            run_fragment_plan_pixels(plan, k, frags.codes.data(), frags.depth.data(), pixel.data(), n, plain.view());
+            std::vector<std::uint8_t> cmp(static_cast<std::size_t>(n), 7);
+            ListedDepthTest dt;
+            dt.record = cmp.data();
+            run_fragment_plan_pixels(plan, k, frags.codes.data(), frags.depth.data(), pixel.data(), n, rec.view(), &dt);
+            REQUIRE(rec.same(plain));
+            const bool depth_alone = plan.key.depth && !plan.key.stencil && !plan.key.nothing;
+            CHECK(dt.recorded == depth_alone);
+            const bool changed = plain.depth != before.depth;
+            if (!depth_alone) {
+              CHECK((!changed || dt.stored));  // (conservative with the stencil test)
+              continue;
+            }
+            bool would = false;
+            for (int i = 0; i < n; ++i) {
+              const std::uint32_t z = frags.depth[static_cast<std::size_t>(i)], zb = before.depth[pixel[static_cast<std::size_t>(i)]];
+              const bool expect = test_func<std::uint32_t>(func, z, zb);
+              REQUIRE(cmp[static_cast<std::size_t>(i)] == (expect ? 1 : 0));
+              would |= expect && z != zb;
+            }
+            CHECK(dt.would_store == would);
+            CHECK(dt.stored == changed);
+            ++recorded;
+            would_store += would;
+            if (would && plan.key.depth_write) continue;  // (the caller may not reuse them)
+            Buffers known = before;
+            for (std::uint32_t& z : known.depth) z = static_cast<std::uint32_t>(rng()) & 0xFFFFFFu;
+            const std::vector<std::uint32_t> poison = known.depth;
+            ListedDepthTest kd;
+            kd.known = cmp.data();
+            run_fragment_plan_pixels(plan, k, frags.codes.data(), frags.depth.data(), pixel.data(), n, known.view(), &kd);
+            CHECK(known.codes == plain.codes);
+            CHECK(known.stencil == plain.stencil);
+            CHECK(known.depth == poison);
+            CHECK_FALSE(kd.stored);
+            CHECK_FALSE(kd.recorded);
+            ++reused;
+          }
+  MESSAGE("recorded " << recorded << ", would store " << would_store << ", reused " << reused);
+  CHECK(recorded > 100);
+  CHECK(would_store > 100);
+  CHECK(reused > 50);
+  // run_fragment_plan on row spans reports a changed depth exactly for the depth
+  // test alone, and whenever one changed otherwise.
+  const FragmentTarget r{16, 3, Arithmetic::Fixed, 8, 8, 24};
+  int spans = 0;
+  for (unsigned on = 0; on < 128; ++on)
+    for (int rep = 0; rep < 8; ++rep) {
+      const FragmentOpsState s = random_state(rng, on | 8u, r);  // (the depth test on)
+      Buffers b(r);
+      randomize(rng, b);
+      Buffers after = b;
+      const FragmentSpan sp = random_span(rng, b);
+      const FragmentPlan plan = plan_of(s, r);
+      const bool reported = run_fragment_plan(plan, fragment_constants(s, r), sp, after.view(), r.width);
+      const bool changed = after.depth != b.depth;
+      INFO("enables ", on, " rep ", rep);
+      if (plan.key.depth && !plan.key.stencil) CHECK(reported == changed);
+      else CHECK((!changed || reported));
+      spans += changed;
+    }
+  MESSAGE("spans whose depth changed: " << spans);
+  CHECK(spans > 50);
+}
+
 TEST_CASE("plan vs full path: the pixel-list comparison detects a misplaced fragment, and bad calls are refused") {
   std::mt19937 rng(778);
   FragmentOpsState s;  // a plain copy: a fragment one pixel off leaves a visible difference

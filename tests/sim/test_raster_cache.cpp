@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <utility>
 #include <vector>
 
 #include "draw_test_util.h"
@@ -268,6 +269,122 @@ TEST_CASE("raster cache: a replay takes the recorded texture coordinates only wh
     }
   MESSAGE("groups that took recorded coordinates: " << taken);
   CHECK(taken > 100);
+}
+
+TEST_CASE("raster cache: a replay reuses the depth test's comparisons only while the depth buffer holds the same values") {
+  // Passes over one mesh with the depth test on (every pass after the first a
+  // replay; docs/performance.md 17.1), each pass's surviving fragments added to
+  // the colour buffer, so the result of every pass's depth test shows. Between
+  // passes, now and then, something else changes depths or the test: a
+  // scissored depth clear, an occluding quad, DrawPixels and CopyPixels of
+  // depth, a code written through framebuffer().depth(), another depth
+  // function, the depth mask off or on. Against the same calls with the cache off, and the
+  // per-fragment reference, 1 and 2 threads.
+  std::uint64_t reused = 0;
+  for (int threads : {1, 2})
+    for (std::uint32_t seed = 60; seed < 72; ++seed) {
+      INFO("threads ", threads, " seed ", seed);
+      Context cached(profile_named("geforce256"), kW, kH), uncached(profile_named("geforce256"), kW, kH),
+          reference(profile_named("geforce256"), kW, kH);
+      uncached.set_raster_cache(false);
+      reference.set_fast_paths(false);
+      for (Context* x : {&cached, &uncached, &reference}) {
+        x->set_threads(threads);
+        SceneRng r(seed);
+        random_clear_and_projection(*x, r, 0.3);
+        ortho_window(*x);  // every vertex inside the view volume
+        const int cx = r.i(8, 20), cy = r.i(6, 14);
+        std::vector<MeshVertex> mesh = jittered_grid(r, cx, cy);
+        for (MeshVertex& v : mesh) {
+          v.x = std::clamp(v.x, 1.0, kW - 1.0);
+          v.y = std::clamp(v.y, 1.0, kH - 1.0);
+        }
+        x->enable(gl::BLEND);
+        x->blendFunc(gl::ONE, gl::ONE);
+        x->enable(gl::DEPTH_TEST);
+        x->depthFunc(gl::LEQUAL);
+        auto rect = [&](int& x0, int& y0, int& w, int& h) {
+          x0 = r.i(0, kW - 8), y0 = r.i(0, kH - 8), w = r.i(4, kW - x0), h = r.i(4, kH - y0);
+        };
+        for (int pass = 0; pass < 14; ++pass) {
+          // A schedule, then random events: the mask off in pass 4 and on again
+          // in pass 6 (comparisons made where a fragment would store but the
+          // mask kept it from storing); a strict function in pass 7 and depths
+          // changed in pass 8 (a pass that stores where its own comparisons then
+          // change: z < z is false), passes 9 and 10 unchanged.
+          static const int kSchedule[] = {0, 0, 0, -1, 7, -2, 8, 10, -1, 0, 0};
+          const int planned = pass < 11 ? kSchedule[pass] : -2;
+          const int event = planned == -1 ? r.i(1, 5) : planned == -2 ? r.i(0, 9) : planned;
+          int x0 = 0, y0 = 0, w = 0, h = 0;
+          rect(x0, y0, w, h);
+          switch (event) {
+            case 1:  // a depth clear of part of the window
+              x->enable(gl::SCISSOR_TEST);
+              x->scissor(x0, y0, w, h);
+              x->clearDepth(r.d(0, 1));
+              x->clear(gl::DEPTH_BUFFER_BIT);
+              x->disable(gl::SCISSOR_TEST);
+              break;
+            case 2:  // an occluder, by the current depth test and mask
+              x->color4(0.01, 0.02, 0.03, 0.04);
+              x->begin(gl::QUADS);
+              for (const auto& [qx, qy] : {std::pair{x0, y0}, {x0 + w, y0}, {x0 + w, y0 + h}, {x0, y0 + h}})
+                x->vertex3(qx, qy, r.d(-0.5, 0.5));
+              x->end();
+              break;
+            case 3: {  // DrawPixels of depth
+              std::vector<float> z(static_cast<std::size_t>(w * h));
+              for (float& v : z) v = static_cast<float>(r.d(0, 1));
+              x->rasterPos2(x0, y0);
+              x->drawPixels(w, h, gl::DEPTH_COMPONENT, gl::FLOAT, z.data());
+              break;
+            }
+            case 4:  // CopyPixels of depth
+              x->rasterPos2(r.i(0, kW / 2), r.i(0, kH / 2));
+              x->copyPixels(x0, y0, std::min(w, kW / 2), std::min(h, kH / 2), gl::DEPTH);
+              break;
+            case 5: {  // codes written straight into the buffer
+              const std::uint32_t code = static_cast<std::uint32_t>(r.i(0, 0xFFFFFF));
+              for (int k = 0; k < 20; ++k)
+                x->framebuffer().depth()[x->framebuffer().index(r.i(0, kW - 1), r.i(0, kH - 1))] = code;
+              break;
+            }
+            case 6: {
+              static const GLenum kFuncs[] = {gl::LESS, gl::LEQUAL, gl::EQUAL, gl::GEQUAL, gl::GREATER, gl::NOTEQUAL,
+                                              gl::ALWAYS, gl::NEVER};
+              x->depthFunc(r.pick(kFuncs));
+              break;
+            }
+            case 10: {
+              static const GLenum kStrict[] = {gl::LESS, gl::GREATER, gl::NOTEQUAL};
+              x->depthFunc(r.pick(kStrict));
+              break;
+            }
+            case 7: x->depthMask(false); break;
+            case 8: x->depthMask(true); break;
+            default: break;
+          }
+          const double tint = r.d(0.01, 0.1);
+          for (int j = 0; j < cy; ++j) {
+            x->begin(gl::TRIANGLE_STRIP);
+            for (int i = 0; i <= cx; ++i)
+              for (int row : {j + 1, j}) {
+                const MeshVertex& v = mesh[static_cast<std::size_t>(row * (cx + 1) + i)];
+                x->color4(tint * v.color[0], tint * v.color[1], tint, tint * v.color[3]);
+                x->vertex3(v.x, v.y, v.z);
+              }
+            x->end();
+          }
+        }
+      }
+      REQUIRE(buffer_hashes(cached) == buffer_hashes(uncached));
+      REQUIRE(buffer_hashes(cached) == buffer_hashes(reference));
+      CHECK(cached.raster_cache().hits() > 0);
+      CHECK(uncached.span_group_stats().depth_reused == 0);
+      reused += cached.span_group_stats().depth_reused;
+    }
+  MESSAGE("groups whose depth test took a replay's comparisons: " << reused);
+  CHECK(reused > 100);
 }
 
 TEST_CASE("raster cache: keys are compared whole, and the cache stays within its byte bound") {
