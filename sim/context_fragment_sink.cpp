@@ -50,7 +50,7 @@ void Context::write_fragments(FragmentSpan& span) {
   if (fb_.format().float_color()) b.values = fb_.values().data();
   else b.codes = fb_.codes().data();
   if (fb_.has_stencil()) b.stencil = fb_.stencil().data();
-  if (fb_.has_depth()) b.depth = fb_.depth().data();
+  if (fb_.has_depth()) b.depth = fb_.depth_untracked();  // (a change is reported below)
   // --probe: the probed pixel's fragment and framebuffer before and after the
   // per-fragment operations (the plan itself is not instrumented).
   int probed = -1;
@@ -63,7 +63,7 @@ void Context::write_fragments(FragmentSpan& span) {
   if (probed >= 0)
     fragment = fl ? describe_values(&span.values[4 * static_cast<std::size_t>(probed)])
                   : describe_codes(&span.codes[4 * static_cast<std::size_t>(probed)], fb_.format().color_bits);
-  run_fragment_plan(*fragment_current_plan_, fragment_current_constants_, span, b, fb_.width());
+  if (run_fragment_plan(*fragment_current_plan_, fragment_current_constants_, span, b, fb_.width())) fb_.depth_changed();
   if (probed >= 0)
     probe_.record("write_fragments", std::string("fragment ") + fragment + (span.depth.empty() ? std::string()
                                          : std::string(" depth ") + std::to_string(span.depth[static_cast<std::size_t>(probed)])) +

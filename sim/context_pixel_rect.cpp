@@ -153,6 +153,18 @@ void Context::emit_color_code_rows(int width, int height, RowCodes row_codes_of)
     row_fragments += std::max(0, c[1] - c[0]);
   }
   if (row_fragments == 0) return;
+  // One window column per image column, in order (zoom 1, as CopyPixels onto the
+  // window usually is): a row's fragments are the row's codes from the first
+  // column that lands in the window, copied at once.
+  int first = -1;
+  bool one_to_one = pixel_zoom_[0] >= 0;
+  for (int n = 0, next = -1; n < width && one_to_one; ++n) {
+    const auto [xa, xe] = cols[static_cast<std::size_t>(n)];
+    if (xa >= xe) continue;
+    if (first < 0) first = n;
+    one_to_one = xe - xa == 1 && (next < 0 || xa == next) && n - first == xa - cols[static_cast<std::size_t>(first)][0];
+    next = xe;
+  }
   FragmentSpan span;  // reused from row to row
   std::vector<std::uint16_t> row_codes(4 * static_cast<std::size_t>(width));
   span.count = row_fragments;
@@ -167,6 +179,14 @@ void Context::emit_color_code_rows(int width, int height, RowCodes row_codes_of)
     for (int y = ya; y < yb; ++y) {
       // Laid out again for every window row, in increasing window x:
       // pixel_fragments textures the span's colours in place.
+      if (one_to_one) {
+        span.x0 = cols[static_cast<std::size_t>(first)][0];
+        std::copy_n(row_codes.data() + 4 * static_cast<std::size_t>(first), 4 * static_cast<std::size_t>(row_fragments),
+                    span.codes.data());
+        span.y = y;
+        pixel_fragments(span);
+        continue;
+      }
       std::size_t f = 0;
       bool started = false;
       for_columns(width, pixel_zoom_[0], [&](int n) {
@@ -397,9 +417,17 @@ void Context::copy_pixels(int x, int y, int width, int height, GLenum type) {
     // (In 64 bits: x and y may be any int.)
     const auto i0 = static_cast<int>(std::clamp<std::int64_t>(-std::int64_t{x}, 0, width));
     const auto i1 = static_cast<int>(std::clamp<std::int64_t>(std::int64_t{fb_.width()} - x, i0, width));
+    // Every code its own final code (8 bits: k/255 converts back to k): rows copied.
+    bool identity = true;
+    for (std::size_t k = 0; k < code_of.size(); ++k) identity = identity && code_of[k] == k;
     for (int j = 0; j < height; ++j) {
       const std::int64_t fy = std::int64_t{y} + j;
       if (fy < 0 || fy >= fb_.height()) continue;
+      if (identity) {
+        std::copy_n(fb_.codes().data() + 4 * fb_.index(x + i0, static_cast<int>(fy)), 4 * static_cast<std::size_t>(i1 - i0),
+                    codes.data() + 4 * (static_cast<std::size_t>(j) * static_cast<std::size_t>(width) + static_cast<std::size_t>(i0)));
+        continue;
+      }
       for (int i = i0; i < i1; ++i) {
         const std::uint16_t* src = fb_.codes().data() + 4 * fb_.index(x + i, static_cast<int>(fy));
         std::uint16_t* dst = codes.data() + 4 * (static_cast<std::size_t>(j) * static_cast<std::size_t>(width) + static_cast<std::size_t>(i));

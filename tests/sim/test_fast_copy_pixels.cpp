@@ -72,3 +72,34 @@ TEST_CASE("fast copy pixels: a source rectangle anywhere in int range reads as o
     CHECK(buffer_hashes(a) == buffer_hashes(b));
   }
 }
+
+TEST_CASE("fast copy pixels: rows copied whole where each column lands on one pixel, and where leading columns land on none") {
+  // emit_color_code_rows copies a row's codes at once when the image columns
+  // that reach the window land one per pixel, in order; with a zoom below 1 the
+  // first columns may land on no pixel (the copy then starts at the first that
+  // does) or several columns on one pixel (no single copy). Every raster
+  // position's fraction, zooms near 1 and below, widths 1..6, against the
+  // reference path.
+  int compared = 0;
+  for (const double zoom : {1.0, 0.5, 0.25, 0.75, 1.5})
+    for (const double fx : {0.0, 0.25, 0.5, 0.75, 0.9})
+      for (int width = 1; width <= 6; ++width) {
+        Context fast(profile_named("geforce256"), 16, 8), slow(profile_named("geforce256"), 16, 8);
+        slow.set_fast_paths(false);
+        for (Context* c : {&fast, &slow}) {
+          ortho_window(*c);
+          for (int y = 0; y < 8; ++y)  // a different colour in every pixel of the source rows
+            for (int x = 0; x < 16; ++x)
+              for (int k = 0; k < 4; ++k)
+                c->framebuffer().codes()[4 * c->framebuffer().index(x, y) + static_cast<std::size_t>(k)] =
+                    static_cast<std::uint16_t>((x * 16 + y * 4 + k * 67) % 256);
+          c->pixelZoom(zoom, 1);
+          c->rasterPos2(3 + fx, 4);
+          c->copyPixels(0, 0, width, 3, gl::COLOR);
+        }
+        INFO("zoom ", zoom, " raster x fraction ", fx, " width ", width);
+        REQUIRE(buffer_hashes(fast) == buffer_hashes(slow));
+        ++compared;
+      }
+  CHECK(compared == 5 * 5 * 6);
+}
