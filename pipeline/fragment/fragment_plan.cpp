@@ -701,7 +701,9 @@ struct DepthOutcome {
 // depth unchanged (its own pixel: no other fragment of the chunk touches it).
 // The alpha test on fixed codes: fragment j's alpha is in[4j + 3].
 void alpha_test_fixed(GLenum func, const std::uint16_t* in, std::uint32_t ref, int n, std::uint8_t* alive) {
-  for (int j = 0; j < n; ++j) alive[j] = test_func<std::uint32_t>(func, in[4 * j + 3], ref);
+  with_test_func<std::uint32_t>(func, [&](auto op) {
+    for (int j = 0; j < n; ++j) alive[j] = op(in[4 * j + 3], ref);
+  });
 }
 
 #if defined(__AVX2__) && defined(__BMI2__)
@@ -847,6 +849,17 @@ void stencil_depth_stage(const FragmentPlanKey& key, const FragmentConstants& k,
   if (st.valid && st.func == key.stencil_func && st.sfail == key.sfail && st.dpfail == key.dpfail &&
       st.dppass == key.dppass) {
     // The same rules looked up by stored value (no switch per fragment).
+    if (!key.depth) {  // without a branch per fragment: a dead fragment keeps the stored value
+      for (int j = 0; j < n; ++j) {
+        const std::size_t p = pixel(j);
+        const std::uint8_t old = b.stencil[p];
+        const bool a = alive[j] != 0, pass = st.pass[old] != 0;
+        const std::uint8_t next = pass ? st.after_dppass[old] : st.after_sfail[old];
+        b.stencil[p] = a ? next : old;
+        alive[j] = a && pass;
+      }
+      return;
+    }
     for (int j = 0; j < n; ++j) {
       if (!alive[j]) continue;
       const std::size_t p = pixel(j);

@@ -26,6 +26,23 @@ constexpr bool test_func(GLenum func, T a, T b) {
   }
 }
 
+// f(cmp), cmp(a, b) being a OP b as a function object chosen once: a loop over
+// fragments inside f then has no switch per fragment. (NEVER and an invalid
+// token: false.)
+template <class T, class F>
+decltype(auto) with_test_func(GLenum func, F&& f) {
+  switch (func) {
+    case gl::LESS: return f([](T a, T b) { return a < b; });
+    case gl::EQUAL: return f([](T a, T b) { return a == b; });
+    case gl::LEQUAL: return f([](T a, T b) { return a <= b; });
+    case gl::GREATER: return f([](T a, T b) { return a > b; });
+    case gl::NOTEQUAL: return f([](T a, T b) { return a != b; });
+    case gl::GEQUAL: return f([](T a, T b) { return a >= b; });
+    case gl::ALWAYS: return f([](T, T) { return true; });
+    default: return f([](T, T) { return false; });
+  }
+}
+
 // The operator as text for plan descriptions ("<", "==", ...; "never"/"always").
 const char* test_func_symbol(GLenum func);
 
