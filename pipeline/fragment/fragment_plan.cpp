@@ -701,7 +701,9 @@ struct DepthOutcome {
 // depth unchanged (its own pixel: no other fragment of the chunk touches it).
 // The alpha test on fixed codes: fragment j's alpha is in[4j + 3].
 void alpha_test_fixed(GLenum func, const std::uint16_t* in, std::uint32_t ref, int n, std::uint8_t* alive) {
-  with_test_func<std::uint32_t>(func, [&](auto op) {
+  // (by value: a byte store may alias anything, so captured references would be
+  // loaded again for every fragment)
+  with_test_func<std::uint32_t>(func, [=](auto op) {
     for (int j = 0; j < n; ++j) alive[j] = op(in[4 * j + 3], ref);
   });
 }
@@ -849,36 +851,39 @@ void stencil_depth_stage(const FragmentPlanKey& key, const FragmentConstants& k,
   if (st.valid && st.func == key.stencil_func && st.sfail == key.sfail && st.dpfail == key.dpfail &&
       st.dppass == key.dppass) {
     // The same rules looked up by stored value (no switch per fragment).
+    // (The buffers and tables as locals: a byte store may alias anything, so
+    // members and captured references would be loaded again for every fragment.)
+    std::uint8_t* const S = b.stencil;
+    const std::uint8_t *const spass_of = st.pass.data(), *const sfail = st.after_sfail.data();
+    const std::uint8_t *const dpfail = st.after_dpfail.data(), *const dppass = st.after_dppass.data();
     if (!key.depth) {  // without a branch per fragment: a dead fragment keeps the stored value
       for (int j = 0; j < n; ++j) {
         const std::size_t p = pixel(j);
-        const std::uint8_t old = b.stencil[p];
-        const bool a = alive[j] != 0, pass = st.pass[old] != 0;
-        const std::uint8_t next = pass ? st.after_dppass[old] : st.after_sfail[old];
-        b.stencil[p] = a ? next : old;
+        const std::uint8_t old = S[p];
+        const bool a = alive[j] != 0, pass = spass_of[old] != 0;
+        const std::uint8_t next = pass ? dppass[old] : sfail[old];
+        S[p] = a ? next : old;
         alive[j] = a && pass;
       }
       return;
     }
-    for (int j = 0; j < n; ++j) {
-      if (!alive[j]) continue;
-      const std::size_t p = pixel(j);
-      const std::uint8_t old = b.stencil[p];
-      if (!st.pass[old]) {
-        b.stencil[p] = st.after_sfail[old];
-        alive[j] = 0;
-        continue;
+    // With the depth test, the same selects; the comparison chosen once. A
+    // fragment stores its depth where it passes both tests (and writes are on).
+    std::uint32_t* const D = b.depth;
+    with_test_func<std::uint32_t>(key.depth_func, [=](auto op) {
+      const bool write = key.depth_write;
+      for (int j = 0; j < n; ++j) {
+        const std::size_t p = pixel(j);
+        const std::uint8_t old = S[p];
+        const std::uint32_t zb = D[p];
+        const bool a = alive[j] != 0, spass = spass_of[old] != 0, dpass = op(z[j], zb);
+        const std::uint8_t next = !spass ? sfail[old] : !dpass ? dpfail[old] : dppass[old];
+        S[p] = a ? next : old;
+        const bool pass = a && spass && dpass;
+        if (write) D[p] = pass ? z[j] : zb;
+        alive[j] = pass;
       }
-      if (key.depth) {
-        if (!test_func<std::uint32_t>(key.depth_func, z[j], b.depth[p])) {
-          b.stencil[p] = st.after_dpfail[old];
-          alive[j] = 0;
-          continue;
-        }
-        if (key.depth_write) b.depth[p] = z[j];
-      }
-      b.stencil[p] = st.after_dppass[old];
-    }
+    });
     return;
   }
   const std::uint32_t ref = k.stencil_ref, vm = k.stencil_value_mask, wm = k.stencil_writemask, smax = k.stencil_max;
