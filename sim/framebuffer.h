@@ -102,13 +102,24 @@ class Framebuffer {
   std::vector<double> values_;
   std::vector<std::uint8_t> stencil_;
   std::vector<std::uint32_t> depth_;
-  // (atomic: the threads' bands report their changes concurrently; copied as a value)
+  // (atomic: the threads' bands report their changes concurrently; copied as a
+  // value; a framebuffer moved from has other contents: a new epoch)
   struct Epoch {
     std::atomic<std::uint64_t> value{next_epoch()};
     Epoch() = default;
     Epoch(const Epoch& o) : value(o.value.load(std::memory_order_relaxed)) {}
+    Epoch(Epoch&& o) noexcept : value(o.value.load(std::memory_order_relaxed)) {
+      o.value.store(next_epoch(), std::memory_order_relaxed);
+    }
     Epoch& operator=(const Epoch& o) {
       value.store(o.value.load(std::memory_order_relaxed), std::memory_order_relaxed);
+      return *this;
+    }
+    Epoch& operator=(Epoch&& o) noexcept {
+      if (this != &o) {
+        value.store(o.value.load(std::memory_order_relaxed), std::memory_order_relaxed);
+        o.value.store(next_epoch(), std::memory_order_relaxed);
+      }
       return *this;
     }
   };

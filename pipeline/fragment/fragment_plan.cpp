@@ -870,8 +870,8 @@ void stencil_depth_stage(const FragmentPlanKey& key, const FragmentConstants& k,
     // With the depth test, the same selects; the comparison chosen once. A
     // fragment stores its depth where it passes both tests (and writes are on).
     std::uint32_t* const D = b.depth;
+    const bool write = key.depth_write;
     with_test_func<std::uint32_t>(key.depth_func, [=](auto op) {
-      const bool write = key.depth_write;
       for (int j = 0; j < n; ++j) {
         const std::size_t p = pixel(j);
         const std::uint8_t old = S[p];
