@@ -36,6 +36,7 @@
 #include "pipeline/texenv/shading.h"
 #include "pipeline/texture/texture_object.h"
 #include "sim/framebuffer.h"
+#include "sim/geometry_memo.h"
 #include "sim/gl_error.h"
 #include "sim/probe.h"
 #include "sim/raster_cache.h"
@@ -433,6 +434,15 @@ class Context {
     if (!on) raster_cache_.clear();
   }
   const RasterCache& raster_cache() const { return raster_cache_; }
+  // The geometry memo (sim/geometry_memo.h, docs/performance.md 18.1): a glEnd
+  // whose object positions and transformation equal an earlier one's takes that
+  // one's window positions and depth codes (span path, every vertex inside the
+  // view volume; on by default). Off: every glEnd transforms its vertices.
+  void set_geometry_memo(bool on) {
+    geometry_memo_on_ = on;
+    if (!on) geometry_memo_.clear();
+  }
+  const GeometryMemo& geometry_memo() const { return geometry_memo_; }
   bool fast_paths() const { return fast_paths_; }
   // glTexImage1D/2D of client data through the upload cache (sim/upload_cache.h;
   // with the fast paths only: off, every upload is computed).
@@ -549,7 +559,8 @@ class Context {
   CurrentAttribs current_;
   bool in_begin_ = false;
   GLenum begin_mode_ = gl::TRIANGLES;
-  std::vector<ClipVertex> begin_vertices_;
+  std::vector<ClipVertex> begin_vertices_;  // the first begin_count_ are this glBegin's
+  std::size_t begin_count_ = 0;
   std::array<int, 4> viewport_{0, 0, fb_.width(), fb_.height()};  // x, y, width, height (§2.10.1: the window)
   double depth_near_ = 0, depth_far_ = 1;
   GLenum shade_model_ = gl::SMOOTH;
@@ -560,6 +571,9 @@ class Context {
   bool full_shading_ = false;
   std::function<void(const std::string&)> on_explain_;
   ClipVertex make_vertex(const glm::dvec4& object) const;
+  // A vertex's current colours (clamped) and texture coordinates (after the
+  // texture matrices) into `cv`, its position left to the caller.
+  void vertex_attributes(ClipVertex& cv) const;
   void set_texture_enable(GLenum target, bool on);
   bool reject_in_begin(const char* function);
   bool tex_parameter(const char* function, GLenum target, GLenum pname, const double* v, int count);
@@ -588,6 +602,10 @@ class Context {
   // One vertex's window form (§2.10.1 viewport, snapped; depth and colour codes;
   // texture coordinates over w).
   void window_vertex(const ClipVertex& c, const DrawSetup& ds, WindowVertex& w) const;
+  // Its two halves: the snapped position and depth code from the clip position
+  // (and iw = 1 / w_c), and the colour codes and texture coordinates over w.
+  void window_position(const glm::dvec4& clip, double iw, const DrawSetup& ds, WindowVertex& w) const;
+  void window_attributes(const ClipVertex& c, double iw, const DrawSetup& ds, WindowVertex& w) const;
   // The rows [y0, y1) (relative to the viewport corner) of one triangle, shaded
   // into `span` and written; `band` >= 0: on a worker, into that band's scratch
   // and counters (write_fragments without its plan update and probe).
@@ -608,15 +626,19 @@ class Context {
   // The triangles' rows [ds.cy0, ds.cy1) on this thread through the raster cache
   // (sim/draw_replay.cpp): replayed when the cache holds them, else rasterized
   // (and recorded when the cache applies); the last group is shaded.
-  void draw_sequence(const DrawSetup& ds, const std::vector<TriangleRef>& tris, FragmentSpan& span);
+  // `geometry`: the geometry memo's serial naming the triangles' positions and
+  // depth codes (one glEnd's own, from the memo), or 0.
+  void draw_sequence(const DrawSetup& ds, const std::vector<TriangleRef>& tris, FragmentSpan& span,
+                     std::uint64_t geometry = 0);
   // Whether the raster cache applies to a draw: the span path with direct writes
   // (or a worker) for every triangle of it.
   bool raster_cache_applies(const DrawSetup& ds) const;
   // What a recording depends on (sim/raster_cache.h): the draw's window and rows
   // (`rows`), then per triangle its snapped positions, depth codes and
-  // coords_reuse_mask.
+  // coords_reuse_mask; with a `geometry` serial, the serial in place of the
+  // positions and depth codes.
   std::vector<std::int64_t> raster_key(const DrawSetup& ds, const TriangleRef* tris, std::size_t count,
-                                       std::initializer_list<std::int64_t> rows) const;
+                                       std::initializer_list<std::int64_t> rows, std::uint64_t geometry = 0) const;
   // Rasterize `tris` (rows [y0, y1)) into `rec`, or replay `rec`; both end with
   // the last group shaded.
   void record_sequence(const DrawSetup& ds, const std::vector<TriangleRef>& tris, int y0, int y1, FragmentSpan& span,
@@ -667,6 +689,9 @@ class Context {
   UploadCache upload_cache_;
   bool raster_cache_on_ = true;
   RasterCache raster_cache_;
+  bool geometry_memo_on_ = true;
+  GeometryMemo geometry_memo_;
+  std::vector<glm::dvec4> object_scratch_;  // a glEnd's object positions, for the memo
   std::vector<TriangleRef> sequence_scratch_;  // a glEnd's triangles (one thread)
   std::uint64_t fast_runs_ = 0, split_batches_ = 0, split_triangles_ = 0, shared_vertex_draws_ = 0;
   // Scratch of the span path, reused from run to run (sim/draw_span.cpp).

@@ -48,7 +48,7 @@ void Context::begin(GLenum mode) {
   }
   in_begin_ = true;
   begin_mode_ = mode;
-  begin_vertices_.clear();
+  begin_count_ = 0;
 }
 
 void Context::end() {
@@ -59,11 +59,12 @@ void Context::end() {
   in_begin_ = false;
   std::vector<ClipVertex> v;
   v.swap(begin_vertices_);
-  struct GiveBack {  // the vertices' storage back to begin_vertices_, emptied, however this ends
+  v.resize(begin_count_);  // (never larger: vertex4 grows it)
+  begin_count_ = 0;
+  struct GiveBack {  // the vertices' storage back to begin_vertices_, however this ends
     std::vector<ClipVertex>& v;
     std::vector<ClipVertex>& to;
     ~GiveBack() {
-      v.clear();
       if (to.empty()) to.swap(v);  // (a glBegin's next vertices then reuse it: no growth per strip)
     }
   } give_back{v, begin_vertices_};
@@ -89,8 +90,28 @@ void Context::end() {
   // polygon that uses it; each is computed once and the polygons' fans index
   // them. The same triangles in the same order as polygon by polygon.
   bool shared = fast_paths_ && !ds.flat && n >= 3;
-  for (std::size_t i = 0; i < n && shared; ++i) shared = inside_view_volume(v[i].position);
+  // The vertices hold their object positions (vertex4). With the geometry memo
+  // (sim/geometry_memo.h), a glEnd of the same positions under the same
+  // transformation as an earlier one takes its window positions and depth
+  // codes; otherwise they are transformed here.
+  const bool memo = shared && geometry_memo_on_;
+  GeometryKey gkey;
+  const GeometryEntry* geo = nullptr;
+  if (memo) {
+    gkey = {begin_mode_, modelview_.top(), projection_.top(), ds.hw, ds.hh, depth_near_, depth_far_,
+            profile_.subpixel_bits, ds.has_depth ? fb_.format().depth_bits : 0};
+    geo = geometry_memo_.find(gkey, n, [&v](std::size_t i) -> const glm::dvec4& { return v[i].position; });
+  }
+  if (!geo) {
+    if (memo) {
+      object_scratch_.resize(n);
+      for (std::size_t i = 0; i < n; ++i) object_scratch_[i] = v[i].position;
+    }
+    for (ClipVertex& c : v) c.position = projection_.top() * (modelview_.top() * c.position);  // §2.10
+    for (std::size_t i = 0; i < n && shared; ++i) shared = inside_view_volume(v[i].position);
+  }
   std::size_t shared_base = 0;
+  std::uint64_t geometry = 0;  // the memo's serial of this glEnd's window positions
   FragmentSpan shared_span;
   sequence_scratch_.clear();
   if (shared) {
@@ -99,7 +120,29 @@ void Context::end() {
     if (!ds.bands) wv.clear();
     shared_base = wv.size();
     wv.resize(shared_base + n);
-    for (std::size_t i = 0; i < n; ++i) window_vertex(v[i], ds, wv[shared_base + i]);
+    WindowVertex* w = wv.data() + shared_base;
+    if (geo) {
+      for (std::size_t i = 0; i < n; ++i) {
+        w[i].p = geo->p[i];
+        if (ds.has_depth) w[i].depth = geo->depth[i];
+        window_attributes(v[i], geo->iw[i], ds, w[i]);
+      }
+      geometry = geo->serial;
+    } else {
+      for (std::size_t i = 0; i < n; ++i) window_vertex(v[i], ds, w[i]);
+      if (memo) {
+        GeometryEntry& e = geometry_memo_.insert(gkey, n, [this](std::size_t i) -> const glm::dvec4& { return object_scratch_[i]; });
+        e.iw.resize(n);
+        e.p.resize(n);
+        e.depth.resize(ds.has_depth ? n : 0);
+        for (std::size_t i = 0; i < n; ++i) {
+          e.iw[i] = 1.0 / v[i].position.w;  // (as window_vertex)
+          e.p[i] = w[i].p;
+          if (ds.has_depth) e.depth[i] = w[i].depth;
+        }
+        geometry = e.serial;
+      }
+    }
   }
   // A polygon's fan over the shared window vertices: corner j is vertex at(j).
   auto shared_fan = [&](auto at, std::size_t count) {
@@ -155,7 +198,7 @@ void Context::end() {
       break;
     default: break;
   }
-  if (shared && !ds.bands) draw_sequence(ds, sequence_scratch_, shared_span);  // through the raster cache
+  if (shared && !ds.bands) draw_sequence(ds, sequence_scratch_, shared_span, geometry);  // through the raster cache
   // Shared vertices: the batch is flushed when full only here, after the glEnd's
   // triangles (they index this glEnd's vertices, which a flush would clear).
   if (shared && ds.bands && batch_triangles_.size() >= kBatchTriangles) flush_batch(ds);
@@ -173,24 +216,39 @@ void Context::flush_deferred() {
   flush_batch(deferred_ds_);
 }
 
-ClipVertex Context::make_vertex(const glm::dvec4& object) const {
-  ClipVertex cv;
-  cv.position = projection_.top() * (modelview_.top() * object);
+void Context::vertex_attributes(ClipVertex& cv) const {
   for (int c = 0; c < 4; ++c) {
     cv.color[c] = clamp01(current_.color[c]);  // §2.13.6 colour clamping
     cv.secondary[c] = clamp01(current_.secondary[c]);
   }
-  for (int u = 0; u < kMaxTextureUnits; ++u) {
+  for (int u = 0; u < profile_.texture_units; ++u) {
     const auto& tc = current_.texcoord[u];
     cv.texcoord[u] = texture_matrix_[u].top() * glm::dvec4(tc[0], tc[1], tc[2], tc[3]);
   }
+  // The units past the profile's: their current coordinates stay (0, 0, 0, 1)
+  // and their texture matrices the identity (glMultiTexCoord and
+  // glActiveTexture refuse them), whose product is (0, 0, 0, 1) exactly.
+  for (int u = profile_.texture_units; u < kMaxTextureUnits; ++u) cv.texcoord[u] = glm::dvec4(0, 0, 0, 1);
+}
+
+ClipVertex Context::make_vertex(const glm::dvec4& object) const {
+  ClipVertex cv;
+  vertex_attributes(cv);
+  cv.position = projection_.top() * (modelview_.top() * object);  // §2.10 clip coordinates
   return cv;
 }
 
 void Context::vertex4(double x, double y, double z, double w) {
   // Outside glBegin/glEnd a vertex has no effect (GL121 §2.6.3 leaves it undefined).
   if (!in_begin_) return;
-  begin_vertices_.push_back(make_vertex(glm::dvec4(x, y, z, w)));
+  // The vertices of earlier glEnds are overwritten in place (every field is
+  // written: constructing one costs more than filling it). The object position
+  // is kept: glEnd transforms it (the matrices cannot change inside
+  // glBegin/glEnd), or takes its window position from the geometry memo.
+  ClipVertex& cv = begin_count_ < begin_vertices_.size() ? begin_vertices_[begin_count_] : begin_vertices_.emplace_back();
+  ++begin_count_;
+  vertex_attributes(cv);
+  cv.position = glm::dvec4(x, y, z, w);
 }
 void Context::vertex2(double x, double y) { vertex4(x, y, 0, 1); }
 void Context::vertex3(double x, double y, double z) { vertex4(x, y, z, 1); }

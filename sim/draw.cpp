@@ -247,14 +247,21 @@ bool Context::prepare_polygon(std::vector<ClipVertex>& poly, std::size_t provoki
 }
 
 void Context::window_vertex(const ClipVertex& c, const DrawSetup& ds, WindowVertex& w) const {
-  const int S = profile_.subpixel_bits;
-  const double hw = ds.hw, hh = ds.hh;
   const double iw = 1.0 / c.position.w;
+  window_position(c.position, iw, ds, w);
+  window_attributes(c, iw, ds, w);
+}
+
+void Context::window_position(const glm::dvec4& clip, double iw, const DrawSetup& ds, WindowVertex& w) const {
+  const int S = profile_.subpixel_bits;
   // §2.10.1 viewport transformation, relative to the viewport corner (vx, vy).
-  w.p.x = snap_coordinate((c.position.x * iw + 1) * hw, S);
-  w.p.y = snap_coordinate((c.position.y * iw + 1) * hh, S);
-  const double zw = depth_near_ + (depth_far_ - depth_near_) * ((c.position.z * iw + 1) / 2);
+  w.p.x = snap_coordinate((clip.x * iw + 1) * ds.hw, S);
+  w.p.y = snap_coordinate((clip.y * iw + 1) * ds.hh, S);
+  const double zw = depth_near_ + (depth_far_ - depth_near_) * ((clip.z * iw + 1) / 2);
   if (ds.has_depth) w.depth = unorm_from_double(zw, fb_.format().depth_bits);
+}
+
+void Context::window_attributes(const ClipVertex& c, double iw, const DrawSetup& ds, WindowVertex& w) const {
   // Vertex colours into the fragment colour format (§1.2 codes, or binary32/64).
   // A colour equal bit for bit to the previous vertex's (in the same format)
   // converts to the same codes: with the fast paths, the last conversion of each

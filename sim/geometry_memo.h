@@ -1,0 +1,136 @@
+// The geometry memo (docs/performance.md 18.1): the window positions of a
+// glEnd's vertices, kept so that the next glEnd with the same object positions
+// under the same transformation (the next pass of a multipass algorithm over the
+// same mesh) does not transform, divide and snap them again.
+//
+// An entry is a pure function of its key: the object positions in order (bit
+// for bit), the modelview and projection matrices, the viewport's half width
+// and height, the depth range, the sub-pixel bits and the depth buffer's bits
+// (GL121 §2.10-2.11: nothing else enters clip, normalized-device or window
+// coordinates). It holds, per vertex, 1/w_c, the snapped window position and
+// the depth code exactly as Context::window_vertex computes them, and is made
+// only when every vertex lies inside the view volume (nothing clipped: the
+// window vertices are the glEnd's own). Each entry has a serial, never reused,
+// that names its content: the raster cache keys a glEnd by it instead of by
+// every triangle's positions (sim/draw_replay.cpp).
+#pragma once
+#include <array>
+#include <bit>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <unordered_map>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "pipeline/gl/enums.h"
+#include "pipeline/raster/triangle.h"
+
+namespace ffsim {
+
+struct GeometryKey {
+  GLenum mode = 0;  // the primitive (the serial then names the triangles too)
+  glm::dmat4 modelview{1.0}, projection{1.0};
+  double hw = 0, hh = 0;                // viewport half width and height
+  double depth_near = 0, depth_far = 1;
+  int subpixel_bits = 0, depth_bits = 0;  // depth_bits 0: no depth buffer (no depth codes)
+};
+
+struct GeometryEntry {
+  std::uint64_t serial = 0;
+  GeometryKey key;
+  std::vector<glm::dvec4> object;  // the key's positions
+  std::vector<double> iw;          // 1 / w_c
+  std::vector<SnappedVertex> p;
+  std::vector<std::uint32_t> depth;  // empty without a depth buffer
+};
+
+class GeometryMemo {
+ public:
+  // At most this many vertices are kept; an insertion beyond it empties the memo.
+  static constexpr std::size_t kMaxVertices = std::size_t{1} << 18;
+
+  // `hash_bits` < 64 keeps only that many bits of each key's hash: the tests
+  // make every key collide (0 bits), so that only the comparison tells keys apart.
+  explicit GeometryMemo(int hash_bits = 64)
+      : hash_mask_(hash_bits >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << hash_bits) - 1) {}
+
+  // The entry for `key` and the n object positions at position_of(i), or null.
+  template <class PositionOf>
+  const GeometryEntry* find(const GeometryKey& key, std::size_t n, PositionOf position_of);
+  // A new entry (its vectors empty but `object`), with a serial of its own; the
+  // caller fills iw, p and depth. Replaces an entry of the same hash.
+  template <class PositionOf>
+  GeometryEntry& insert(const GeometryKey& key, std::size_t n, PositionOf position_of);
+  void clear();
+
+  std::uint64_t hits() const { return hits_; }
+  std::uint64_t misses() const { return misses_; }
+  std::size_t size() const { return entries_.size(); }
+
+ private:
+  template <class PositionOf>
+  static std::uint64_t hash(const GeometryKey& key, std::size_t n, PositionOf position_of);
+  static std::uint64_t hash_key(const GeometryKey& key, std::size_t n);
+  // A multiply-xorshift step over the value's bits (−0 and +0, and NaNs of
+  // other payloads, differ: the key is compared bit for bit).
+  static void mix(std::uint64_t& h, double v) {
+    h = (h ^ std::bit_cast<std::uint64_t>(v)) * 0xBF58476D1CE4E5B9ull;
+    h ^= h >> 29;
+  }
+  static bool same_key(const GeometryKey& a, const GeometryKey& b);
+  std::unordered_map<std::uint64_t, GeometryEntry> entries_;  // by hash; the key is compared
+  std::uint64_t hash_mask_;
+  std::size_t vertices_ = 0;
+  std::uint64_t next_serial_ = 1, hits_ = 0, misses_ = 0;
+};
+
+// ---- implementation ------------------------------------------------------------
+
+template <class PositionOf>
+std::uint64_t GeometryMemo::hash(const GeometryKey& key, std::size_t n, PositionOf position_of) {
+  // One multiply-xorshift lane per coordinate (four independent chains; one
+  // chain over every coordinate was slower than the transformation it saves).
+  std::array<std::uint64_t, 4> h{hash_key(key, n), 0x9E3779B97F4A7C15ull * 3, 0x9E3779B97F4A7C15ull * 5,
+                                 0x9E3779B97F4A7C15ull * 7};
+  for (std::size_t i = 0; i < n; ++i) {
+    const glm::dvec4& o = position_of(i);
+    for (int c = 0; c < 4; ++c) mix(h[static_cast<std::size_t>(c)], o[c]);
+  }
+  for (int c = 1; c < 4; ++c) mix(h[0], std::bit_cast<double>(h[static_cast<std::size_t>(c)]));
+  return h[0];
+}
+
+template <class PositionOf>
+const GeometryEntry* GeometryMemo::find(const GeometryKey& key, std::size_t n, PositionOf position_of) {
+  const auto it = entries_.find(hash(key, n, position_of) & hash_mask_);
+  bool same = it != entries_.end() && it->second.object.size() == n && same_key(it->second.key, key);
+  for (std::size_t i = 0; i < n && same; ++i) same = std::memcmp(&it->second.object[i], &position_of(i), sizeof(glm::dvec4)) == 0;
+  if (!same) {
+    ++misses_;
+    return nullptr;
+  }
+  ++hits_;
+  return &it->second;
+}
+
+template <class PositionOf>
+GeometryEntry& GeometryMemo::insert(const GeometryKey& key, std::size_t n, PositionOf position_of) {
+  if (vertices_ + n > kMaxVertices) clear();
+  const std::uint64_t h = hash(key, n, position_of) & hash_mask_;
+  const auto old = entries_.find(h);
+  if (old != entries_.end()) {
+    vertices_ -= old->second.object.size();
+    entries_.erase(old);
+  }
+  GeometryEntry& e = entries_[h];
+  e.serial = next_serial_++;
+  e.key = key;
+  e.object.resize(n);
+  for (std::size_t i = 0; i < n; ++i) e.object[i] = position_of(i);
+  vertices_ += n;
+  return e;
+}
+
+}  // namespace ffsim
