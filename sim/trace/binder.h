@@ -148,6 +148,11 @@ struct CommandDef {
   // draw reads, so a deferred draw (Context::set_defer_draws) may stay pending
   // across them; before any other step the executor flushes it.
   bool vertex_data = false;
+  // A vertex-data call that never records a GL error (`never_errs`), or only
+  // when its first argument is not a texture unit of the profile
+  // (`errs_on_unit`: glMultiTexCoord). The replay runs consecutive ones
+  // without the per-step bookkeeping (StepHot::quiet_run).
+  bool never_errs = false, errs_on_unit = false;
   CheckFn check;         // optional load-time check of the evaluated arguments
   OutShapeFn out_shape;  // required when an argument is an OutImage
   CommandDef& pass_boundary() { is_pass = true; return *this; }
@@ -155,6 +160,8 @@ struct CommandDef {
   CommandDef& checked(CheckFn f) { check = std::move(f); return *this; }
   CommandDef& explain_after() { explained = true; return *this; }
   CommandDef& vertex_data_call() { vertex_data = true; return *this; }
+  CommandDef& quiet() { never_errs = true; return *this; }
+  CommandDef& quiet_with_unit() { errs_on_unit = true; return *this; }
   CommandDef& writes_image(OutShapeFn f) { out_shape = std::move(f); return *this; }
   std::string signature() const;  // "glClearColor red green blue alpha"
 };

@@ -63,8 +63,25 @@ class Runner {
       std::vector<StepHot> own;  // (a Program not made by the loader)
       if (p_.hot.size() != p_.steps.size()) own = hot_steps(p_);
       const std::vector<StepHot>& hot = own.empty() ? p_.hot : own;
+      // Quiet runs (StepHot::quiet_run) cannot record an error on a Context with
+      // at least the program's texture units.
+      const bool quiet_runs = ctx.profile().texture_units >= p_.profile.texture_units;
       for (std::size_t k = 0; k < p_.steps.size() && r_.ok; ++k) {
         const StepHot& h = hot[k];
+        if (h.quiet_run >= 2 && quiet_runs) {
+          // The steps one after the other, with what the loop below does for
+          // them: nothing to flush (vertex data), the errors of the step before
+          // reported first, none of their own, each counted.
+          flush_errors();
+          if (!r_.ok) break;
+          const std::size_t n = h.quiet_run;
+          ctx.set_call_site_ref(p_.steps[k + n - 1].where);  // (where the per-step loop leaves it)
+          for (const StepHot* q = &h; q != &h + n; ++q) q->packed_call(ctx, p_.packed.data() + q->packed_at, q->def->method);
+          r_.steps += static_cast<int>(n);
+          k += n - 1;
+          collect_errors(ctx);
+          continue;
+        }
         const Step& s = p_.steps[k];
         if (!(h.kind == StepKind::Call && h.vertex_data)) ctx.flush_deferred();
         if (h.kind != StepKind::ExpectError) flush_errors();

@@ -45,6 +45,16 @@ std::vector<StepHot> hot_steps(const Program& p) {
     h.vertex_data = s.def->vertex_data;
     if (p.packed_args(s)) h.packed_call = s.def->packed_call;
   }
+  for (std::size_t k = hot.size(); k-- > 0;) {
+    const StepHot& h = hot[k];
+    bool quiet = h.packed_call && h.vertex_data && !h.def->is_pass && h.def->never_errs;
+    if (h.packed_call && h.vertex_data && !h.def->is_pass && h.def->errs_on_unit) {
+      const std::int64_t unit = p.packed[h.packed_at].i - static_cast<std::int64_t>(gl::TEXTURE0);
+      quiet = p.packed[h.packed_at].kind == ArgKind::Enum && unit >= 0 && unit < p.profile.texture_units;
+    }
+    const std::uint16_t next = k + 1 < hot.size() ? hot[k + 1].quiet_run : 0;
+    hot[k].quiet_run = quiet ? static_cast<std::uint16_t>(std::min<int>(next + 1, 65535)) : 0;
+  }
   return hot;
 }
 

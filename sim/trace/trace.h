@@ -63,6 +63,11 @@ struct StepHot {
   std::uint32_t packed_at = kNotPacked;          // Call: as Step::packed_at
   StepKind kind = StepKind::Call;
   bool vertex_data = false;                      // Call: def->vertex_data
+  // The number of steps from this one on (at most 65535) that are packed
+  // vertex-data calls which cannot record a GL error under the program's profile
+  // (CommandDef::never_errs, or errs_on_unit with a unit of the profile): the
+  // replay calls them one after the other without the per-step bookkeeping.
+  std::uint16_t quiet_run = 0;
 };
 
 struct Param {

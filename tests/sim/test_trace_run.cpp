@@ -409,3 +409,79 @@ TEST_CASE("trace explain: the registry has the framebuffer explainer") {
   REQUIRE(!explainers().all().empty());
   CHECK(explainers().all()[0].area == "framebuffer");
 }
+
+TEST_CASE("trace run: quiet runs of vertex calls replay as step by step, and a bad texture unit is reported at its line") {
+  // StepHot::quiet_run: consecutive packed vertex-data calls that cannot record
+  // a GL error are called one after the other without the per-step
+  // bookkeeping. The same program with every quiet_run zeroed runs step by
+  // step: the buffers, step counts and errors must be the same.
+  const std::string t = V +
+                        "profile geforce256\n"
+                        "framebuffer 16 16\n"
+                        "glMatrixMode GL_PROJECTION\n"
+                        "glOrtho 0 16 0 16 -1 1\n"
+                        "glMatrixMode GL_MODELVIEW\n"
+                        "glVertex2d 1 1\n"                       // 7: outside glBegin: no effect, no error
+                        "glBegin GL_TRIANGLE_STRIP\n"            // 8
+                        "glColor4d 1 0.5 0.25 1\n"
+                        "glSecondaryColor3d 0.1 0.2 0.3\n"
+                        "glNormal3d 0 0 1\n"
+                        "glTexCoord2d 0 0\n"
+                        "glMultiTexCoord2d GL_TEXTURE1 0 1\n"
+                        "glVertex2d 0 0\n"
+                        "glColor3f 0.5 1 0\n"
+                        "glMultiTexCoord2d GL_TEXTURE3 1 1\n"    // 16: not a unit of geforce256
+                        "glVertex3d 16 0 0\n"
+                        "glMultiTexCoord4d GL_TEXTURE0 0 1 0 1\n"
+                        "glVertex4d 0 16 0 1\n"
+                        "glVertex2d 16 16\n"
+                        "glEnd\n"                                // 21
+                        "hash color\n";
+  Program quiet = load_trace_text(t, "t.trace", {});
+  Program steps = quiet;
+  std::size_t longest = 0;
+  for (StepHot& h : steps.hot) {
+    longest = std::max<std::size_t>(longest, h.quiet_run);
+    h.quiet_run = 0;
+  }
+  CHECK(longest == 7);  // glVertex2d 1 1 (line 7) is followed by glBegin; lines 9-15 are the longest run
+  // Steps: lines 4-6 are steps 0-2, line 7 step 3, and so on (line = step + 4).
+  REQUIRE(quiet.hot.size() == 19);
+  CHECK(quiet.hot[3].quiet_run == 1);   // line 7, alone
+  CHECK(quiet.hot[4].quiet_run == 0);   // glBegin (may record an error)
+  CHECK(quiet.hot[5].quiet_run == 7);   // lines 9-15
+  CHECK(quiet.hot[12].quiet_run == 0);  // line 16: GL_TEXTURE3
+  CHECK(quiet.hot[13].quiet_run == 4);  // lines 17-20
+  CHECK(quiet.hot[17].quiet_run == 0);  // glEnd (a pass)
+  CHECK(quiet.hot[18].quiet_run == 0);  // hash
+  std::ostringstream out;
+  const RunResult a = run_program(quiet, {}, out), b = run_program(steps, {}, out);
+  CHECK(a.ok);
+  CHECK(a.steps == b.steps);
+  CHECK(a.steps == 19);
+  CHECK(a.passes == 1);
+  REQUIRE(a.gl_errors.size() == 1);
+  CHECK(a.gl_errors == b.gl_errors);
+  CHECK(a.gl_errors[0].rfind("t.trace:16:1: glMultiTexCoord: GL_INVALID_ENUM", 0) == 0);
+  REQUIRE(a.hashes.size() == 1);
+  CHECK(a.hashes[0].hex == b.hashes[0].hex);
+  CHECK(a.final_hashes == b.final_hashes);
+  // --strict stops at the bad unit either way, after the same steps.
+  RunOptions strict;
+  strict.strict = true;
+  const RunResult c = run_program(quiet, strict, out), d = run_program(steps, strict, out);
+  CHECK(!c.ok);
+  CHECK(c.steps == d.steps);
+  CHECK(c.fatal == d.fatal);
+  // On a Context with fewer texture units than the program's profile, a unit
+  // valid for the program may not be: every step is taken one by one.
+  Program four = load_trace_text(t, "t.trace", {});
+  four.profile = *find_builtin_profile("rgba12");  // 4 units: GL_TEXTURE3 too is quiet
+  four.hot = hot_steps(four);
+  CHECK(four.hot[5].quiet_run == 12);  // lines 9-20
+  Context two(*find_builtin_profile("geforce256"), 16, 16);
+  const RunResult e = run_program_on(two, four, {}, out);
+  REQUIRE(e.gl_errors.size() == 1);
+  CHECK(e.gl_errors[0] == a.gl_errors[0]);
+  CHECK(e.final_hashes == a.final_hashes);
+}
