@@ -53,10 +53,23 @@ void store_byte_texels(const ByteTexelTables& tab, const void* data, int width, 
   const ClientLayout L = client_layout(modes, width, height, tab.group_bytes, 1);
   const auto* base = static_cast<const unsigned char*>(data);
   const int nc = tab.components;
+  // Every stored component the code of its own client element, in order, by an
+  // identity table (an 8-bit level from UNSIGNED_BYTE data through an identity
+  // transfer: c/255 stores as c): a row's codes are its bytes, widened.
+  bool widen = tab.group_bytes == nc;
+  for (std::size_t k = 0; k < static_cast<std::size_t>(nc) && widen; ++k) {
+    widen = tab.element[k] == static_cast<int>(k);
+    for (int v = 0; v < 256 && widen; ++v) widen = tab.code[k][static_cast<std::size_t>(v)] == v;
+  }
+  const std::size_t row_codes = static_cast<std::size_t>(width) * static_cast<std::size_t>(nc);
   for (int y = 0; y < height; ++y) {
     const unsigned char* g = base + L.offset(0, y);
     std::uint16_t* out = dst.codes.data() + (static_cast<std::size_t>(y0 + y) * static_cast<std::size_t>(dst.width) +
                                              static_cast<std::size_t>(x0)) * static_cast<std::size_t>(nc);
+    if (widen) {
+      for (std::size_t i = 0; i < row_codes; ++i) out[i] = g[i];
+      continue;
+    }
     for (int k = 0; k < nc; ++k) {
       const auto& code = tab.code[static_cast<std::size_t>(k)];
       const int e = tab.element[static_cast<std::size_t>(k)];

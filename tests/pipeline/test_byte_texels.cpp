@@ -39,14 +39,17 @@ TEST_CASE_TEMPLATE("byte texels: the tables give the generic path's codes", T, f
   std::uniform_real_distribution<double> u(-1.5, 1.5);
   const auto maybe = [&](double identity_value) { return rng() % 2 ? identity_value : u(rng); };
   const char* profiles[] = {"geforce256", "rgba10", "rgba12"};
-  int componentwise = 0, other = 0, tables = 0, stages = 0;
+  int componentwise = 0, other = 0, tables = 0, stages = 0, widened = 0;
   for (int trial = 0; trial < 600; ++trial) {
     CAPTURE(trial);
     const Profile& p = *find_builtin_profile(profiles[rng() % 3]);
     PixelTransferState ts;
     ImagingState is;
     Matrix4 m = kIdentity;
-    for (int c = 0; c < 4; ++c) {
+    // One trial in four: the initial transfer state (an identity plan; rows of
+    // 8-bit levels from UNSIGNED_BYTE data are widened, not looked up).
+    const bool initial = rng() % 4 == 0;
+    for (int c = 0; c < 4 && !initial; ++c) {
       ts.scale[c] = maybe(1);
       ts.bias[c] = maybe(0);
       ts.post_color_matrix_scale[c] = maybe(1);
@@ -54,13 +57,13 @@ TEST_CASE_TEMPLATE("byte texels: the tables give the generic path's codes", T, f
       ts.color_maps[c].clear();
       for (int i = 0; i < 1 + static_cast<int>(rng() % 8); ++i) ts.color_maps[c].push_back(std::abs(u(rng)) / 1.5);
     }
-    ts.map_color = rng() % 2 == 0;
-    const bool color_on = rng() % 2 == 0;
-    is.table(TableSlot::Color) = random_table(rng, color_on);
-    const bool post_on = rng() % 2 == 0;
-    is.table(TableSlot::PostColorMatrix) = random_table(rng, post_on);
+    ts.map_color = !initial && rng() % 2 == 0;
+    const bool color_on = !initial && rng() % 2 == 0;
+    if (!initial) is.table(TableSlot::Color) = random_table(rng, color_on);
+    const bool post_on = !initial && rng() % 2 == 0;
+    if (!initial) is.table(TableSlot::PostColorMatrix) = random_table(rng, post_on);
     // One trial in six: a colour matrix or a convolution, which the path refuses.
-    const int mixing = static_cast<int>(rng() % 12);
+    const int mixing = initial ? 2 : static_cast<int>(rng() % 12);
     if (mixing == 0) m[1] = 0.25;
     if (mixing == 1) {
       is.conv2d.enabled = true;
@@ -80,9 +83,17 @@ TEST_CASE_TEMPLATE("byte texels: the tables give the generic path's codes", T, f
     stages += static_cast<int>(plan.stages.size());
     tables += plan.has(Stage::ColorTable) || plan.has(Stage::PostColorMatrixColorTable);
 
-    const GLenum format = kFormats[rng() % std::size(kFormats)];
-    const GLenum type = rng() % 3 == 0 ? gl::BYTE : gl::UNSIGNED_BYTE;
-    const GLenum internal = kInternal[rng() % std::size(kInternal)];
+    // Half the initial-state trials upload a format into the 8-bit internal
+    // format of the same components (what the paper's traces do), or of the same
+    // components in another order (BGRA: identity tables, not widened).
+    static const std::pair<GLenum, GLenum> kMatched[] = {
+        {gl::RGBA, gl::RGBA8},           {gl::RGB, gl::RGB8}, {gl::ALPHA, gl::ALPHA8}, {gl::LUMINANCE, gl::LUMINANCE8},
+        {gl::LUMINANCE_ALPHA, gl::LUMINANCE_ALPHA}, {gl::BGRA, gl::RGBA8}, {gl::BGR, gl::RGB8}};
+    const bool matched = initial && rng() % 2 == 0;
+    const auto pair = kMatched[rng() % std::size(kMatched)];
+    const GLenum format = matched ? pair.first : kFormats[rng() % std::size(kFormats)];
+    const GLenum type = !matched && rng() % 3 == 0 ? gl::BYTE : gl::UNSIGNED_BYTE;
+    const GLenum internal = matched ? pair.second : kInternal[rng() % std::size(kInternal)];
     CAPTURE(format);
     CAPTURE(type);
     CAPTURE(internal);
@@ -105,7 +116,14 @@ TEST_CASE_TEMPLATE("byte texels: the tables give the generic path's codes", T, f
     const ByteTexelTables tab = byte_texel_tables<T>(format, type, plan, in, level, p);
     store_byte_texels(tab, data.data(), w, h, modes, level, x0, y0);
     CHECK(level.codes == expect.codes);
+    bool identity = tab.group_bytes == tab.components;  // (store_byte_texels' widening rows)
+    for (int k = 0; k < tab.components && identity; ++k) {
+      identity = tab.element[static_cast<std::size_t>(k)] == k;
+      for (int v = 0; v < 256 && identity; ++v) identity = tab.code[static_cast<std::size_t>(k)][static_cast<std::size_t>(v)] == v;
+    }
+    widened += identity;
   }
+  CHECK(widened > 10);
   // The trials covered both outcomes, plans with stages and with tables.
   CHECK(componentwise > 400);
   CHECK(other > 50);
