@@ -34,6 +34,26 @@ void store_texels(const RgbaImage<T>& img, TextureImage& dst, int x0, int y0, co
   if (const auto f = texture_internal_format(dst.internal_format); f && f->sized_bits == dst.bits)
     for (int k = 0; k < 4; ++k)
       if (f->component_bits[k] > 0) cbits[k] = f->component_bits[k];
+  // The common case (a fixed profile, every component of the level's width): the
+  // same final_code per component, the components' RGBA slots found once.
+  int slot[4] = {0, 0, 0, 0};
+  bool uniform = fixed;
+  for (int k = 0; k < nc; ++k) {
+    slot[k] = rgba_component_for(dst.base, k);
+    uniform = uniform && cbits[k] == dst.bits;
+  }
+  if (uniform) {
+    if (img.empty()) return;
+    const std::size_t row = static_cast<std::size_t>(img.width) * static_cast<std::size_t>(nc);
+    for (int y = 0; y < img.height; ++y) {
+      const T* c = img.at(0, y);
+      std::uint16_t* out = dst.codes.data() + (static_cast<std::size_t>(y0 + y) * static_cast<std::size_t>(dst.width) +
+                                               static_cast<std::size_t>(x0)) * static_cast<std::size_t>(nc);
+      for (std::size_t i = 0, x4 = 0; i < row; i += static_cast<std::size_t>(nc), x4 += 4)
+        for (int k = 0; k < nc; ++k) out[i + static_cast<std::size_t>(k)] = final_code(c[x4 + static_cast<std::size_t>(slot[k])], dst.bits);
+    }
+    return;
+  }
   for (int y = 0; y < img.height; ++y)
     for (int x = 0; x < img.width; ++x) {
       const T* c = img.at(x, y);

@@ -1,5 +1,6 @@
 #include "pipeline/pixel_transfer/unpack.h"
 
+#include <array>
 #include <cmath>
 #include <cstring>
 
@@ -176,6 +177,29 @@ RgbaImage<T> unpack_rgba(const void* data, int width, int height, GLenum format,
   const ClientLayout L = client_layout(modes, width, height, fm.n, s);
   const auto* base = static_cast<const unsigned char*>(data);
   const bool swap = modes.swap_bytes && s > 1;
+  if (s == 1) {
+    // One-byte elements: each value a function of its byte alone (Table 2.6),
+    // computed once for the 256 bytes and looked up.
+    std::array<T, 256> real;
+    for (int b = 0; b < 256; ++b) {
+      const auto c = static_cast<unsigned char>(b);
+      real[static_cast<std::size_t>(b)] = element_to_real<T>(read_element(&c, type, false), type);
+    }
+    for (int y = 0; y < height; ++y) {
+      const unsigned char* g = base + L.offset(0, y);  // (group x at g + x·n)
+      for (int x = 0; x < width; ++x, g += fm.n) {
+        T* o = img.at(x, y);
+        o[0] = o[1] = o[2] = T(0);
+        o[3] = T(1);
+        for (int k = 0; k < fm.n; ++k) {
+          const T v = real[g[k]];
+          if (fm.luminance && k == 0) o[0] = o[1] = o[2] = v;
+          else o[fm.slot[k]] = v;
+        }
+      }
+    }
+    return img;
+  }
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       T* o = img.at(x, y);

@@ -451,3 +451,44 @@ TEST_CASE_TEMPLATE("pixel unpack: every UNSIGNED_BYTE and BYTE value is Table 2.
     CHECK(u.px[4 * static_cast<std::size_t>(b)] == T(0));  // R, G, B of ALPHA data: 0
   }
 }
+
+TEST_CASE_TEMPLATE("final conversion: store_texels writes final_code of each component's RGBA slot, at every width", T, float, double) {
+  // An independent statement of §3.8.1 for fixed profiles: stored component k
+  // of a texel is the code of the RGBA value its base format takes (Table 3.15),
+  // rounded at the component's width and widened to the level's (mixed-width
+  // formats), at (x0 + x, y0 + y); everything else of the level is left alone.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-0.25, 1.25);
+  const GLenum kInternalFormats[] = {gl::ALPHA8, gl::LUMINANCE, gl::LUMINANCE12_ALPHA4, gl::LUMINANCE_ALPHA, gl::INTENSITY,
+                                     gl::RGB8, gl::R3_G3_B2, gl::RGB5, gl::RGBA8, gl::RGB5_A1, gl::RGB10_A2, gl::RGBA12,
+                                     gl::RGBA16, gl::RGBA, 3, 4};
+  const char* profiles[] = {"geforce256", "rgba10", "rgba12"};
+  for (int trial = 0; trial < 300; ++trial) {
+    CAPTURE(trial);
+    const Profile& p = *find_builtin_profile(profiles[rng() % 3]);
+    const GLenum internal = kInternalFormats[rng() % std::size(kInternalFormats)];
+    CAPTURE(internal);
+    const InternalFormat f = *texture_internal_format(internal);
+    const int w = static_cast<int>(rng() % 7), h = 1 + static_cast<int>(rng() % 4);  // (w = 0: nothing stored)
+    RgbaImage<T> img(w, h);
+    for (auto& v : img.px) v = static_cast<T>(rng() % 8 == 0 ? (rng() % 2 ? 0.0 : 1.0) : u(rng));
+    const int x0 = static_cast<int>(rng() % 3), y0 = static_cast<int>(rng() % 2);
+    TextureImage level = texture_level(w + x0 + 2, h + y0 + 1, internal, f, 0, p);
+    for (auto& c : level.codes) c = static_cast<std::uint16_t>(rng() & ((1u << level.bits) - 1));
+    TextureImage expect = level;
+    const int nc = component_count(level.base);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        for (int k = 0; k < nc; ++k) {
+          const int width = f.sized_bits == level.bits && f.component_bits[static_cast<std::size_t>(k)] > 0
+                                ? f.component_bits[static_cast<std::size_t>(k)]
+                                : level.bits;
+          const std::uint32_t code = final_code(img.at(x, y)[rgba_component_for(level.base, k)], width);
+          expect.codes[(static_cast<std::size_t>(y0 + y) * static_cast<std::size_t>(level.width) + static_cast<std::size_t>(x0 + x)) *
+                           static_cast<std::size_t>(nc) + static_cast<std::size_t>(k)] =
+              static_cast<std::uint16_t>(unorm_convert(code, width, level.bits));
+        }
+    store_texels(img, level, x0, y0, p);
+    CHECK(level.codes == expect.codes);
+  }
+}
