@@ -576,6 +576,16 @@ class Context {
   void vertex_attributes(ClipVertex& cv) const;
   void set_texture_enable(GLenum target, bool on);
   bool reject_in_begin(const char* function);
+  // The unit index of GL_TEXTUREi, or -1 after an INVALID_ENUM error naming
+  // `function` (the error path out of line: glMultiTexCoord is called for every
+  // vertex, and building the message needs a large stack frame).
+  int texture_unit(const char* function, GLenum texture) {
+    const int unit = static_cast<int>(texture) - static_cast<int>(gl::TEXTURE0);
+    if (unit >= 0 && unit < profile_.texture_units) [[likely]] return unit;
+    not_a_texture_unit(function, texture);
+    return -1;
+  }
+  [[gnu::cold, gnu::noinline]] void not_a_texture_unit(const char* function, GLenum texture);
   bool tex_parameter(const char* function, GLenum target, GLenum pname, const double* v, int count);
   bool tex_env(const char* function, GLenum target, GLenum pname, const double* v, int count);
   // Drawing (sim/draw.cpp). One glEnd's constants: nothing in them can change

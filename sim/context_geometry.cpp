@@ -261,13 +261,8 @@ void Context::texCoord4(double s, double t, double r, double q) { current_.texco
 void Context::texCoord2(double s, double t) { texCoord4(s, t, 0, 1); }
 
 void Context::multiTexCoord4(GLenum texture, double s, double t, double r, double q) {
-  const int unit = static_cast<int>(texture) - static_cast<int>(gl::TEXTURE0);
-  if (unit < 0 || unit >= profile_.texture_units) {
-    error(gl::INVALID_ENUM, "glMultiTexCoord",
-          gl::enum_name(texture) + " is not a texture unit (" + std::to_string(profile_.texture_units) + " units)");
-    return;
-  }
-  current_.texcoord[unit] = {s, t, r, q};
+  const int unit = texture_unit("glMultiTexCoord", texture);
+  if (unit >= 0) current_.texcoord[unit] = {s, t, r, q};
 }
 void Context::multiTexCoord2(GLenum texture, double s, double t) { multiTexCoord4(texture, s, t, 0, 1); }
 

@@ -137,25 +137,20 @@ void Context::texParameterfv(GLenum target, GLenum pname, const double* params) 
   tex_parameter("glTexParameterfv", target, pname, params, pname == gl::TEXTURE_BORDER_COLOR ? 4 : 1);
 }
 
+void Context::not_a_texture_unit(const char* function, GLenum texture) {
+  error(gl::INVALID_ENUM, function,
+        gl::enum_name(texture) + " is not a texture unit (" + std::to_string(profile_.texture_units) + " units)");
+}
+
 void Context::activeTexture(GLenum texture) {
   if (reject_in_begin("glActiveTexture")) return;
-  const int unit = static_cast<int>(texture) - static_cast<int>(gl::TEXTURE0);
-  if (unit < 0 || unit >= profile_.texture_units) {
-    error(gl::INVALID_ENUM, "glActiveTexture",
-          gl::enum_name(texture) + " is not a texture unit (" + std::to_string(profile_.texture_units) + " units)");
-    return;
-  }
-  active_unit_ = unit;
+  const int unit = texture_unit("glActiveTexture", texture);
+  if (unit >= 0) active_unit_ = unit;
 }
 
 void Context::clientActiveTexture(GLenum texture) {
-  const int unit = static_cast<int>(texture) - static_cast<int>(gl::TEXTURE0);
-  if (unit < 0 || unit >= profile_.texture_units) {
-    error(gl::INVALID_ENUM, "glClientActiveTexture",
-          gl::enum_name(texture) + " is not a texture unit (" + std::to_string(profile_.texture_units) + " units)");
-    return;
-  }
-  client_active_unit_ = unit;
+  const int unit = texture_unit("glClientActiveTexture", texture);
+  if (unit >= 0) client_active_unit_ = unit;
 }
 
 bool Context::tex_env(const char* fn, GLenum target, GLenum pname, const double* v, int count) {
