@@ -26,15 +26,19 @@ void color_table_lookup(RgbaImage<T>& img, const ColorTable& table) {
   const int w = table.width;
   std::vector<T> e(table.entries.size());
   for (std::size_t i = 0; i < e.size(); ++i) e[i] = static_cast<T>(table.entries[i]);
-  int src[4];
-  for (int c = 0; c < 4; ++c) src[c] = source_component(table.base, c);
-  const std::size_t n = img.size();
-  for (std::size_t p = 0; p < n; ++p)
-    for (int c = 0; c < 4; ++c) {
-      if (src[c] < 0) continue;
-      T& v = img.px[4 * p + c];
-      v = e[static_cast<std::size_t>(table_index(v, w)) * nc + src[c]];
+  // The components the table replaces (Table 3.12), and the table column of each.
+  int comp[4], src[4], active = 0;
+  for (int c = 0; c < 4; ++c)
+    if (const int s = source_component(table.base, c); s >= 0) {
+      comp[active] = c;
+      src[active++] = s;
     }
+  const std::size_t n = img.size();
+  for (int a = 0; a < active; ++a) {  // (components are independent: one pass each)
+    T* v = img.px.data() + comp[a];
+    const T* col = e.data() + src[a];
+    for (std::size_t p = 0; p < n; ++p, v += 4) *v = col[static_cast<std::size_t>(table_index(*v, w)) * static_cast<std::size_t>(nc)];
+  }
 }
 
 template void set_table_entries<float>(ColorTable&, const RgbaImage<float>&);

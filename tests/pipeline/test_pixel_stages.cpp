@@ -226,6 +226,19 @@ TEST_CASE("pixel colour table: each format replaces exactly its components, per-
   color_table_lookup(img, make(BaseFormat::RGB));
   CHECK(img.px[0] == static_cast<float>(e(0, 0)));
   CHECK(img.px[3] == 5.0f);
+  // Several pixels: each as if looked up alone.
+  for (const Case& c : cases) {
+    RgbaImage<double> many(5, 1);
+    for (std::size_t i = 0; i < many.px.size(); ++i) many.px[i] = static_cast<double>((i * 7) % 11) / 10.0 - 0.05;
+    RgbaImage<double> want = many;
+    for (int x = 0; x < 5; ++x) {
+      RgbaImage<double> alone = one_pixel<double>(want.at(x, 0)[0], want.at(x, 0)[1], want.at(x, 0)[2], want.at(x, 0)[3]);
+      color_table_lookup(alone, make(c.b));
+      for (int k = 0; k < 4; ++k) want.at(x, 0)[k] = alone.px[static_cast<std::size_t>(k)];
+    }
+    color_table_lookup(many, make(c.b));
+    CHECK(many.px == want.px);
+  }
   // Disabled or empty: no-op.
   ColorTable off = make(BaseFormat::RGBA);
   off.enabled = false;
