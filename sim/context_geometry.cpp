@@ -128,20 +128,21 @@ void Context::end() {
         window_attributes(v[i], geo->iw[i], ds, w[i]);
       }
       geometry = geo->serial;
-    } else {
+    } else if (!memo) {
       for (std::size_t i = 0; i < n; ++i) window_vertex(v[i], ds, w[i]);
-      if (memo) {
-        GeometryEntry& e = geometry_memo_.insert(gkey, n, [this](std::size_t i) -> const glm::dvec4& { return object_scratch_[i]; });
-        e.iw.resize(n);
-        e.p.resize(n);
-        e.depth.resize(ds.has_depth ? n : 0);
-        for (std::size_t i = 0; i < n; ++i) {
-          e.iw[i] = 1.0 / v[i].position.w;  // (as window_vertex)
-          e.p[i] = w[i].p;
-          if (ds.has_depth) e.depth[i] = w[i].depth;
-        }
-        geometry = e.serial;
+    } else {  // window_vertex's two halves, keeping 1/w_c and the position half in the memo
+      GeometryEntry& e = geometry_memo_.insert(gkey, n, [this](std::size_t i) -> const glm::dvec4& { return object_scratch_[i]; });
+      e.iw.resize(n);
+      e.p.resize(n);
+      e.depth.resize(ds.has_depth ? n : 0);
+      for (std::size_t i = 0; i < n; ++i) {
+        e.iw[i] = 1.0 / v[i].position.w;
+        window_position(v[i].position, e.iw[i], ds, w[i]);
+        window_attributes(v[i], e.iw[i], ds, w[i]);
+        e.p[i] = w[i].p;
+        if (ds.has_depth) e.depth[i] = w[i].depth;
       }
+      geometry = e.serial;
     }
   }
   // A polygon's fan over the shared window vertices: corner j is vertex at(j).

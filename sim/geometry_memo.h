@@ -26,6 +26,7 @@
 
 #include "pipeline/gl/enums.h"
 #include "pipeline/raster/triangle.h"
+#include "sim/hash.h"
 
 namespace ffsim {
 
@@ -73,12 +74,9 @@ class GeometryMemo {
   template <class PositionOf>
   static std::uint64_t hash(const GeometryKey& key, std::size_t n, PositionOf position_of);
   static std::uint64_t hash_key(const GeometryKey& key, std::size_t n);
-  // A multiply-xorshift step over the value's bits (−0 and +0, and NaNs of
-  // other payloads, differ: the key is compared bit for bit).
-  static void mix(std::uint64_t& h, double v) {
-    h = (h ^ std::bit_cast<std::uint64_t>(v)) * 0xBF58476D1CE4E5B9ull;
-    h ^= h >> 29;
-  }
+  // hash_mix over the value's bits (−0 and +0, and NaNs of other payloads,
+  // differ: the key is compared bit for bit).
+  static void mix(std::uint64_t& h, double v) { hash_mix(h, std::bit_cast<std::uint64_t>(v)); }
   static bool same_key(const GeometryKey& a, const GeometryKey& b);
   std::unordered_map<std::uint64_t, GeometryEntry> entries_;  // by hash; the key is compared
   std::uint64_t hash_mask_;
@@ -98,7 +96,7 @@ std::uint64_t GeometryMemo::hash(const GeometryKey& key, std::size_t n, Position
     const glm::dvec4& o = position_of(i);
     for (int c = 0; c < 4; ++c) mix(h[static_cast<std::size_t>(c)], o[c]);
   }
-  for (int c = 1; c < 4; ++c) mix(h[0], std::bit_cast<double>(h[static_cast<std::size_t>(c)]));
+  for (std::size_t c = 1; c < 4; ++c) hash_mix(h[0], h[c]);
   return h[0];
 }
 

@@ -24,6 +24,13 @@ enum class BufferKind { Color, Alpha, Stencil, Depth };
 std::uint64_t buffer_hash(const Framebuffer& fb, BufferKind kind);
 std::string hash_hex(std::uint64_t h);
 
+// One multiply-xorshift step, for the in-memory caches' keys (sim/raster_cache,
+// sim/geometry_memo; not a stable format: nothing outside a run sees these).
+inline void hash_mix(std::uint64_t& h, std::uint64_t v) {
+  h = (h ^ v) * 0xBF58476D1CE4E5B9ull;
+  h ^= h >> 29;
+}
+
 // FNV-1a 64 incremental helper (exposed for tests and for hashing other data).
 struct Fnv1a64 {
   std::uint64_t state = 0xcbf29ce484222325ull;

@@ -2,6 +2,8 @@
 
 #include <utility>
 
+#include "sim/hash.h"
+
 namespace ffsim {
 
 namespace {
@@ -25,12 +27,9 @@ std::uint64_t RasterCache::hash(const std::vector<std::int64_t>& key) {
   // Four independent multiply-xorshift lanes (a key is a few thousand words per
   // glEnd; one serial chain of multiplies was 2 % of a terrain frame), folded at
   // the end. The key itself is compared on a match.
-  constexpr std::uint64_t kMul = 0xBF58476D1CE4E5B9ull, kAdd = 0x9E3779B97F4A7C15ull;
+  constexpr std::uint64_t kAdd = 0x9E3779B97F4A7C15ull;
   std::array<std::uint64_t, 4> h{kAdd ^ key.size(), kAdd * 3, kAdd * 5, kAdd * 7};
-  auto mix = [&](std::uint64_t& a, std::int64_t k) {
-    a = (a ^ static_cast<std::uint64_t>(k)) * kMul;
-    a ^= a >> 29;
-  };
+  auto mix = [](std::uint64_t& a, std::int64_t k) { hash_mix(a, static_cast<std::uint64_t>(k)); };
   std::size_t i = 0;
   for (; i + 4 <= key.size(); i += 4)
     for (std::size_t j = 0; j < 4; ++j) mix(h[j], key[i + j]);
