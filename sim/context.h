@@ -742,6 +742,7 @@ class Context {
     const RecordedGroup* coords_from = nullptr;
     RecordedGroup* coords_to = nullptr;
     std::vector<TriangleRef> sequence;  // a band's triangles (flush_batch)
+    CoverageRun coverage_run;            // rasterize_triangle's run, its buffer kept
   };
   SpanScratch span_scratch_;
   // glEnd's polygons (clip coordinates, then window vertices) in buffers reused

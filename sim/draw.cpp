@@ -570,7 +570,8 @@ void Context::raster_triangle(const DrawSetup& ds, const std::array<const Window
     };
     rasterize_triangle(
         sv, profile_.subpixel_bits, ds.cx0, y0, ds.cx1, y1,  // (one capture: no allocation)
-        [&gather](const TriangleCoverage& cov, const CoverageRun& run) { gather(cov, run); }, RunWeights::First);
+        [&gather](const TriangleCoverage& cov, const CoverageRun& run) { gather(cov, run); }, RunWeights::First,
+        &sc.coverage_run);
     if (!across) shade_group(ds, span, band);
     return;
   }
@@ -673,7 +674,8 @@ void Context::raster_triangle(const DrawSetup& ds, const std::array<const Window
     write();
   };
   rasterize_triangle(sv, profile_.subpixel_bits, ds.cx0, y0, ds.cx1, y1,  // (one capture: no allocation)
-                     [&shade_run](const TriangleCoverage& cov, const CoverageRun& run) { shade_run(cov, run); });
+                     [&shade_run](const TriangleCoverage& cov, const CoverageRun& run) { shade_run(cov, run); },
+                     RunWeights::All, &sc.coverage_run);
 }
 
 void Context::draw_polygon(std::vector<ClipVertex>& poly, std::size_t provoking, const DrawSetup& ds) {

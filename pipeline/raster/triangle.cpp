@@ -49,7 +49,7 @@ Edge make_edge(const SnappedVertex& p, const SnappedVertex& q) {
 TriangleCoverage rasterize_triangle(const std::array<SnappedVertex, 3>& vin, int S, int clip_x0, int clip_y0,
                                     int clip_x1, int clip_y1,
                                     const std::function<void(const TriangleCoverage&, const CoverageRun&)>& emit,
-                                    RunWeights weights) {
+                                    RunWeights weights, CoverageRun* scratch) {
   TriangleCoverage cov;
   for (const SnappedVertex& p : vin)
     if (p.x < -kMaxSnapped || p.x > kMaxSnapped || p.y < -kMaxSnapped || p.y > kMaxSnapped) return cov;
@@ -88,7 +88,8 @@ TriangleCoverage rasterize_triangle(const std::array<SnappedVertex, 3>& vin, int
   // (integers), so each edge bounds x by one exact floor/ceil division. The run
   // is the intersection: the same fragments and weights as evaluating every
   // centre (tests/pipeline/test_fast_raster.cpp compares with that loop).
-  CoverageRun run;
+  CoverageRun local;
+  CoverageRun& run = scratch ? *scratch : local;
   std::array<std::int64_t, 3> step{}, t{};
   for (int k = 0; k < 3; ++k) {
     step[k] = e[k].a * one;

@@ -58,10 +58,13 @@ struct TriangleCoverage {
 // `emit` with the setup for every non-empty run, bottom row first. Returns the
 // setup (area 0: degenerate, nothing was produced). `weights`: every fragment's
 // weights, or the first fragment's only (the span path steps them itself).
+// `scratch`: the run handed to `emit`, kept by the caller so that its weight
+// buffer is reused from triangle to triangle (null: a local one, allocated per
+// triangle).
 TriangleCoverage rasterize_triangle(const std::array<SnappedVertex, 3>& v, int subpixel_bits, int clip_x0,
                                     int clip_y0, int clip_x1, int clip_y1,
                                     const std::function<void(const TriangleCoverage&, const CoverageRun&)>& emit,
-                                    RunWeights weights = RunWeights::All);
+                                    RunWeights weights = RunWeights::All, CoverageRun* scratch = nullptr);
 
 // A code attribute (colour or depth) at a fragment: the exact barycentric value
 // Σ w_k·k_k / A rounded half up once, floor((2·Σ w_k·k_k + A) / 2A), in 128-bit

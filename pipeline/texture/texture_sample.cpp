@@ -503,6 +503,81 @@ void repeat_axis(const float* s, int n, int size, float two_b, std::int32_t* i0,
   }
 }
 
+#ifdef __AVX2__
+// span_linear_repeat's RGBA and RGB sums for texels of at most 15 bits and
+// weights of at most 14 (every code and weight fits int16), the same integers
+// regrouped (a, b the B-bit weights, 1 = 2^B):
+//   Σ t·w = (1 − b)·h0 + b·h1,  h0 = t00·(1 − a) + t10·a,  h1 = t01·(1 − a) + t11·a
+//         = h0·2^B + (h1 − h0)·b,
+// exact in 32-bit lanes: the sum is below 2^31 (texel bits + 2B <= 31) and the
+// wrap-around of (h1 − h0)·b cancels in the addition. Where x1 = x0 + 1 (no wrap
+// around the row) t10 follows t00 in memory, so one 16-byte load at t00 holds
+// both, and one pmaddwd per row gives two fragments' h0 (h1) for four
+// components. Eight fragments at a time; eight with a wrapped pair, and the
+// tail, take the sum as span_level writes it. off: the four texels' code
+// offsets (t00, t10, t01, t11); codes holds 8 codes from each t00 and t01.
+template <int NC>
+void linear_repeat_pairs(const std::uint16_t* codes, const std::uint32_t* const (&off)[4], const std::int32_t* x0,
+                         const std::int32_t* x1, const std::uint32_t* wx, const std::uint32_t* wy, int m, int B,
+                         std::uint32_t one_code, std::uint16_t* o) {
+  const std::uint32_t one = 1u << B;
+  const int B2 = 2 * B;
+  const std::uint32_t half = 1u << (B2 - 1);
+  const std::uint32_t *o00 = off[0], *o10 = off[1], *o01 = off[2], *o11 = off[3];
+  auto sum = [&](int f) {  // span_level's sum, one fragment
+    const std::uint32_t a = wx[f], bb = wy[f];
+    const std::uint32_t w00 = (one - a) * (one - bb), w10 = a * (one - bb), w01 = (one - a) * bb, w11 = a * bb;
+    const std::uint16_t *t00 = codes + o00[f], *t10 = codes + o10[f], *t01 = codes + o01[f], *t11 = codes + o11[f];
+    std::uint16_t* q = o + 4 * static_cast<std::size_t>(f);
+    for (int c = 0; c < NC; ++c)
+      q[c] = static_cast<std::uint16_t>((t00[c] * w00 + t10[c] * w10 + t01[c] * w01 + t11[c] * w11 + half) >> B2);
+    if constexpr (NC == 3) q[3] = static_cast<std::uint16_t>(one_code);
+  };
+  // Per 128-bit lane (one fragment), t00's and t10's codes as int16 pairs per
+  // component, (t00.c, t10.c); RGB: the alpha pair 0.
+  const __m256i interleave =
+      NC == 4 ? _mm256_setr_epi8(0, 1, 8, 9, 2, 3, 10, 11, 4, 5, 12, 13, 6, 7, 14, 15, 0, 1, 8, 9, 2, 3, 10, 11, 4, 5, 12,
+                                 13, 6, 7, 14, 15)
+              : _mm256_setr_epi8(0, 1, 6, 7, 2, 3, 8, 9, 4, 5, 10, 11, -1, -1, -1, -1, 0, 1, 6, 7, 2, 3, 8, 9, 4, 5, 10,
+                                 11, -1, -1, -1, -1);
+  const __m128i sB = _mm_cvtsi32_si128(B), s2B = _mm_cvtsi32_si128(B2);
+  const __m256i vhalf = _mm256_set1_epi32(static_cast<int>(half)), vone = _mm256_set1_epi32(static_cast<int>(one));
+  const __m256i one_codes = _mm256_set1_epi16(static_cast<std::int16_t>(one_code)), vi1 = _mm256_set1_epi32(1);
+  auto rows = [&](const std::uint32_t* of, int f) {  // fragments f, f + 1: one lane each
+    return _mm256_shuffle_epi8(_mm256_loadu2_m128i(reinterpret_cast<const __m128i*>(codes + of[f + 1]),
+                                                   reinterpret_cast<const __m128i*>(codes + of[f])),
+                               interleave);
+  };
+  auto ld = [](const void* p) { return _mm256_loadu_si256(static_cast<const __m256i*>(p)); };
+  int f = 0;
+  for (; f + 8 <= m; f += 8) {
+    const __m256i adjacent = _mm256_cmpeq_epi32(ld(x1 + f), _mm256_add_epi32(ld(x0 + f), vi1));
+    if (_mm256_movemask_epi8(adjacent) != -1) {  // a pair wraps around the row
+      for (int i = f; i < f + 8; ++i) sum(i);
+      continue;
+    }
+    const __m256i a = ld(wx + f), wb = ld(wy + f);
+    const __m256i wa = _mm256_or_si256(_mm256_sub_epi32(vone, a), _mm256_slli_epi32(a, 16));  // (1 − a) | a << 16
+    __m256i r[4];
+    for (int p = 0; p < 4; ++p) {
+      const __m256i pick = _mm256_setr_epi32(2 * p, 2 * p, 2 * p, 2 * p, 2 * p + 1, 2 * p + 1, 2 * p + 1, 2 * p + 1);
+      const __m256i wap = _mm256_permutevar8x32_epi32(wa, pick), wbp = _mm256_permutevar8x32_epi32(wb, pick);
+      const __m256i h0 = _mm256_madd_epi16(rows(o00, f + 2 * p), wap);
+      const __m256i h1 = _mm256_madd_epi16(rows(o01, f + 2 * p), wap);
+      const __m256i s = _mm256_add_epi32(_mm256_sll_epi32(h0, sB), _mm256_mullo_epi32(_mm256_sub_epi32(h1, h0), wbp));
+      r[p] = _mm256_srl_epi32(_mm256_add_epi32(s, vhalf), s2B);
+    }
+    for (int q = 0; q < 2; ++q) {
+      // codes < 2^16 (packus keeps them); lanes (f, f + 2 | f + 1, f + 3) to (f, f + 1, f + 2, f + 3)
+      __m256i packed = _mm256_permute4x64_epi64(_mm256_packus_epi32(r[2 * q], r[2 * q + 1]), 0xD8);
+      if constexpr (NC == 3) packed = _mm256_blend_epi16(packed, one_codes, 0x88);  // RGB: (R, G, B, 1)
+      _mm256_storeu_si256(reinterpret_cast<__m256i*>(o + 4 * static_cast<std::size_t>(f + 4 * q)), packed);
+    }
+  }
+  for (; f < m; ++f) sum(f);
+}
+#endif
+
 template <int NC>
 void span_linear_repeat(const SpanLevel& L, const float* s, const float* t, int n, std::uint16_t* out) {
   const TextureImage& im = *L.im;
@@ -513,6 +588,8 @@ void span_linear_repeat(const SpanLevel& L, const float* s, const float* t, int 
   const int B2 = 2 * L.B;
   const std::uint32_t half = 1u << (B2 - 1);
   const float two_b = std::ldexp(1.0f, L.B);
+  // Texel codes and weights fit int16: linear_repeat_pairs.
+  [[maybe_unused]] const bool pairs16 = im.bits <= 15 && L.B <= 14;
   // One t for the span (bit for bit; no early exit, so the loop vectorises):
   // its axis is then computed once. (±0 differ in bits: computed per fragment.)
   std::uint32_t t_varies = 0;
@@ -606,9 +683,12 @@ void span_linear_repeat(const SpanLevel& L, const float* s, const float* t, int 
         const __m128i shift = _mm_cvtsi32_si128(B2);
         const auto limit = static_cast<std::uint32_t>(im.codes.size()) - 1;  // the last code: a gather there reads past
         auto ld = [](const std::int32_t* p, int f) { return _mm256_load_si256(reinterpret_cast<const __m256i*>(p + f)); };
-        auto gather = [&](__m256i idx) {
-          return _mm256_and_si256(_mm256_i32gather_epi32(reinterpret_cast<const int*>(codes), idx, 2), low16);
+        auto gather_pair = [&](__m256i idx) {  // codes idx and idx + 1
+          return _mm256_i32gather_epi32(reinterpret_cast<const int*>(codes), idx, 2);
         };
+        auto gather = [&](__m256i idx) { return _mm256_and_si256(gather_pair(idx), low16); };
+        const __m128i sB = _mm_cvtsi32_si128(L.B);
+        const __m256i vi1 = _mm256_set1_epi32(1);
         for (; f0 + 8 <= m; f0 += 8) {
           const __m256i r0 = _mm256_add_epi32(_mm256_mullo_epi32(_mm256_add_epi32(ld(y0, f0), vub), vWb), vub);
           const __m256i r1 = _mm256_add_epi32(_mm256_mullo_epi32(_mm256_add_epi32(ld(y1, f0), vub), vWb), vub);
@@ -621,10 +701,20 @@ void span_linear_repeat(const SpanLevel& L, const float* s, const float* t, int 
           const __m256i a = _mm256_load_si256(reinterpret_cast<const __m256i*>(wx + f0));
           const __m256i bb = _mm256_load_si256(reinterpret_cast<const __m256i*>(wy + f0));
           const __m256i na = _mm256_sub_epi32(vone, a), nb = _mm256_sub_epi32(vone, bb);
-          __m256i sum = _mm256_mullo_epi32(gather(i00), _mm256_mullo_epi32(na, nb));
-          sum = _mm256_add_epi32(sum, _mm256_mullo_epi32(gather(i10), _mm256_mullo_epi32(a, nb)));
-          sum = _mm256_add_epi32(sum, _mm256_mullo_epi32(gather(i01), _mm256_mullo_epi32(na, bb)));
-          sum = _mm256_add_epi32(sum, _mm256_mullo_epi32(gather(i11), _mm256_mullo_epi32(a, bb)));
+          __m256i sum;
+          if (pairs16 && _mm256_movemask_epi8(_mm256_cmpeq_epi32(ld(x1, f0), _mm256_add_epi32(ld(x0, f0), vi1))) == -1) {
+            // x1 = x0 + 1 in every lane: the 32-bit gather at t00 is t00 | t10 << 16
+            // (at t01, t01 | t11 << 16), and linear_repeat_pairs's regrouped sum
+            // takes one pmaddwd per row, h0·2^B + (h1 − h0)·b.
+            const __m256i wa = _mm256_or_si256(na, _mm256_slli_epi32(a, 16));  // (1 − a) | a << 16
+            const __m256i h0 = _mm256_madd_epi16(gather_pair(i00), wa), h1 = _mm256_madd_epi16(gather_pair(i01), wa);
+            sum = _mm256_add_epi32(_mm256_sll_epi32(h0, sB), _mm256_mullo_epi32(_mm256_sub_epi32(h1, h0), bb));
+          } else {
+            sum = _mm256_mullo_epi32(gather(i00), _mm256_mullo_epi32(na, nb));
+            sum = _mm256_add_epi32(sum, _mm256_mullo_epi32(gather(i10), _mm256_mullo_epi32(a, nb)));
+            sum = _mm256_add_epi32(sum, _mm256_mullo_epi32(gather(i01), _mm256_mullo_epi32(na, bb)));
+            sum = _mm256_add_epi32(sum, _mm256_mullo_epi32(gather(i11), _mm256_mullo_epi32(a, bb)));
+          }
           _mm256_store_si256(reinterpret_cast<__m256i*>(k1 + f0), _mm256_srl_epi32(_mm256_add_epi32(sum, vhalf), shift));
         }
       }
@@ -653,23 +743,20 @@ void span_linear_repeat(const SpanLevel& L, const float* s, const float* t, int 
     }
 #ifdef __AVX2__
     if constexpr (NC == 4 || NC == 3) {
-      // Two fragments per 256-bit register (four 32-bit lanes each), the same
-      // integers as below: the four weights and texel offsets of every fragment
-      // first (a loop the compiler vectorises), then per pair four loads, four
-      // products and one rounding; the codes packed back to 16 bits (< 2^16).
-      // RGB: a texel is loaded as four codes, the fourth (the next texel's R)
-      // lands in the alpha lane, which is then set to 1; unless a load would
-      // read past the image (its last texel), then the chunk takes the loop below.
+      // The texel offsets of every fragment first (a loop the compiler
+      // vectorises); then linear_repeat_pairs where its codes fit int16 and its
+      // 16-byte loads stay inside the image. Otherwise two fragments per 256-bit
+      // register (four 32-bit lanes each), the same integers as below: the four
+      // weights of every fragment, then per pair four loads, four products and
+      // one rounding; the codes packed back to 16 bits (< 2^16). RGB: a texel is
+      // loaded as four codes, the fourth (the next texel's R) lands in the alpha
+      // lane, which is then set to 1; unless a load would read past the image
+      // (its last texel), then the chunk takes the loop below.
       alignas(32) std::uint32_t w00[kAxisChunk], w10[kAxisChunk], w01[kAxisChunk], w11[kAxisChunk];
       alignas(32) std::uint32_t o00[kAxisChunk], o10[kAxisChunk], o01[kAxisChunk], o11[kAxisChunk];
       const auto Wb = static_cast<std::uint32_t>(W), ub = static_cast<std::uint32_t>(b);
       std::uint32_t last = 0;  // the largest offset
       for (int f = 0; f < m; ++f) {
-        const std::uint32_t a = wx[f], bb = wy[f];
-        w00[f] = (one - a) * (one - bb);
-        w10[f] = a * (one - bb);
-        w01[f] = (one - a) * bb;
-        w11[f] = a * bb;
         const std::uint32_t r0 = (static_cast<std::uint32_t>(y0[f]) + ub) * Wb + ub;
         const std::uint32_t r1 = (static_cast<std::uint32_t>(y1[f]) + ub) * Wb + ub;
         o00[f] = NC * (r0 + static_cast<std::uint32_t>(x0[f]));
@@ -677,6 +764,18 @@ void span_linear_repeat(const SpanLevel& L, const float* s, const float* t, int 
         o01[f] = NC * (r1 + static_cast<std::uint32_t>(x0[f]));
         o11[f] = NC * (r1 + static_cast<std::uint32_t>(x1[f]));
         last = std::max({last, o00[f], o10[f], o01[f], o11[f]});
+      }
+      if (pairs16 && static_cast<std::size_t>(last) + 8 <= im.codes.size()) {
+        const std::uint32_t* const off[4] = {o00, o10, o01, o11};
+        linear_repeat_pairs<NC>(codes, off, x0, x1, wx, wy, m, L.B, L.one_code, o);
+        continue;
+      }
+      for (int f = 0; f < m; ++f) {
+        const std::uint32_t a = wx[f], bb = wy[f];
+        w00[f] = (one - a) * (one - bb);
+        w10[f] = a * (one - bb);
+        w01[f] = (one - a) * bb;
+        w11[f] = a * bb;
       }
       if (NC == 4 || static_cast<std::size_t>(last) + 4 <= im.codes.size()) {
         const __m256i vhalf = _mm256_set1_epi32(static_cast<int>(half));

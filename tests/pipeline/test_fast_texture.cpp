@@ -113,6 +113,59 @@ void compare_sampling(unsigned seed, int iterations, bool repeat_linear = false)
   CHECK(linear > iterations / 4);
 }
 
+// LINEAR with REPEAT at the limits of span_linear_repeat's 16-bit pair sums
+// (linear_repeat_pairs, and the one-component gather path): texel codes of up to
+// 15 bits and weights of up to 14 take pmaddwd; 16-bit codes or 15-bit weights
+// (where 1 − a = 2^15 does not fit int16) must not. Codes at the extremes, many
+// coordinates at texel centres (a = 0, so 1 − a = 2^B) or just past them, spans
+// long enough for several groups of eight and several 64-fragment chunks.
+void compare_pair_limits(unsigned seed, int bits, int B, int iterations) {
+  std::mt19937 g(seed);
+  const std::uint32_t max = (1u << bits) - 1;
+  const BaseFormat bases[] = {BaseFormat::RGBA, BaseFormat::RGB, BaseFormat::Luminance, BaseFormat::Alpha};
+  for (int it = 0; it < iterations; ++it) {
+    TextureObject tex;
+    TextureImage im;
+    im.border = g() % 4 == 0 ? 1 : 0;
+    const int w = 2 << (g() % 6), h = 1 << (g() % 7);
+    im.width = w + 2 * im.border;
+    im.height = h + 2 * im.border;
+    im.base = bases[it % 4];
+    im.bits = bits;
+    im.codes.resize(static_cast<std::size_t>(im.width) * static_cast<std::size_t>(im.height) * component_count(im.base));
+    for (auto& k : im.codes) k = static_cast<std::uint16_t>(g() % 3 ? max - g() % 2 : g() % (max + 1));
+    tex.levels.push_back(im);
+    tex.params.min_filter = tex.params.mag_filter = gl::LINEAR;
+    tex.params.wrap_s = tex.params.wrap_t = gl::REPEAT;
+    const SampleFormat fmt{Arithmetic::Fixed, B};
+    const int n = 1 + static_cast<int>(g() % 200);
+    const bool row = g() % 2;
+    std::vector<double> s(static_cast<std::size_t>(n)), t(s.size());
+    auto coord = [&](int size) {
+      const double centre = (static_cast<int>(g() % (3 * size)) - size + 0.5) / size;
+      switch (g() % 3) {
+        case 0: return centre;                                                      // a = 0
+        case 1: return centre + std::ldexp(1.0, -B) / size * (1 + g() % 3);         // a = 1, 2, 3 / 2^B
+        default: return centre + (static_cast<double>(g() % 1000) / 1000.0) / size;  // anywhere in the texel
+      }
+    };
+    for (int f = 0; f < n; ++f) {
+      s[static_cast<std::size_t>(f)] = coord(w);
+      t[static_cast<std::size_t>(f)] = row && f > 0 ? t[0] : coord(h);
+    }
+    const std::vector<float> sf(s.begin(), s.end()), tf(t.begin(), t.end());
+    std::vector<std::uint16_t> out(4 * static_cast<std::size_t>(n));
+    sample_span_fixed(tex, 2, sf.data(), tf.data(), n, fmt, out.data());
+    for (int f = 0; f < n; ++f) {
+      const Texel want = sample_texture(tex, 2, sf[static_cast<std::size_t>(f)], tf[static_cast<std::size_t>(f)], 0.0, fmt);
+      for (int c = 0; c < 4; ++c) {
+        INFO("bits ", bits, " B ", B, " iteration ", it, " fragment ", f);
+        REQUIRE(out[4 * static_cast<std::size_t>(f) + static_cast<std::size_t>(c)] == want.code[static_cast<std::size_t>(c)]);
+      }
+    }
+  }
+}
+
 TexEnvState random_env(std::mt19937& g) {
   TexEnvState e;
   const GLenum modes[] = {gl::REPLACE, gl::MODULATE, gl::DECAL, gl::BLEND, gl::ADD, gl::COMBINE, gl::COMBINE};
@@ -202,6 +255,14 @@ TEST_CASE("fast texture: sample_span_fixed == sample_texture, random textures an
 
 TEST_CASE("fast texture: sample_span_fixed == sample_texture, LINEAR and REPEAT on both axes") {
   compare_sampling(44, 3000, true);
+}
+
+TEST_CASE("fast texture: LINEAR and REPEAT at the limits of the 16-bit pair sums (texel bits, weight bits)") {
+  // (bits, B) with bits + 2B <= 31 (span_linear_repeat's 32-bit sums): the
+  // first five take the pair sums, the last three must not.
+  const int cases[][2] = {{8, 8}, {15, 8}, {1, 14}, {3, 14}, {14, 8}, {16, 7}, {16, 1}, {1, 15}};
+  unsigned seed = 60;
+  for (const auto& c : cases) compare_pair_limits(seed++, c[0], c[1], 400);
 }
 
 TEST_CASE("fast texture: texture_environment_span_fixed == texture_environment, widths 8, 10, 12 and odd") {
