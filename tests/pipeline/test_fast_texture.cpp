@@ -283,6 +283,57 @@ TEST_CASE("fast texture: 8-bit DOT3 environments (every source, operand, scale; 
   CHECK(detected > 50);
 }
 
+TEST_CASE("fast texture: 8-bit DOT3 of texture and primary colour, every pair of red codes, every scale") {
+  // The bump-mapping case (both arguments vary, colour operands): red codes
+  // (x, y) over all 256 x 256 pairs, green and blue chosen so that their products
+  // cancel ((2·128 − 255)(2·128 − 255) + (2·128 − 255)(2·127 − 255) = 0), so the
+  // sum is (2x − 255)(2y − 255): every product of two odd factors in [−255, 255],
+  // through the 8-wide sums and the binary32 rounding of finish. Alpha REPLACE
+  // of the primary alpha, or the dot product (DOT3_RGBA).
+  const ColorFormat fmt{Arithmetic::Fixed, 8};
+  for (const GLenum f : {gl::DOT3_RGB, gl::DOT3_RGBA})
+    for (const double scale : {1.0, 2.0, 4.0}) {
+      TexEnvState env;
+      env.mode = gl::COMBINE;
+      env.combine_rgb = f;
+      env.combine_alpha = gl::REPLACE;
+      env.source_rgb[0] = gl::TEXTURE;
+      env.source_rgb[1] = gl::PRIMARY_COLOR;
+      env.operand_rgb[0] = env.operand_rgb[1] = gl::SRC_COLOR;
+      env.source_alpha[0] = gl::PRIMARY_COLOR;
+      env.operand_alpha[0] = gl::SRC_ALPHA;
+      env.rgb_scale = env.alpha_scale = scale;
+      for (int x = 0; x < 256; ++x) {
+        const int n = 256;
+        std::vector<std::uint16_t> tex(4 * n), prim(4 * n), prev(4 * n, 0), out(4 * n);
+        for (int y = 0; y < n; ++y) {
+          const std::size_t o = 4 * static_cast<std::size_t>(y);
+          tex[o] = static_cast<std::uint16_t>(x), tex[o + 1] = 128, tex[o + 2] = 128, tex[o + 3] = 255;
+          prim[o] = static_cast<std::uint16_t>(y), prim[o + 1] = 128, prim[o + 2] = 127;
+          prim[o + 3] = static_cast<std::uint16_t>((x + y) & 255);
+        }
+        REQUIRE(texture_environment_span_fixed(env, BaseFormat::RGBA, 8, prev.data(), prim.data(), tex.data(), n, fmt,
+                                               out.data()));
+        for (int y = 0; y < n; ++y) {
+          const std::size_t o = 4 * static_cast<std::size_t>(y);
+          Rgba p, q;
+          Texel t;
+          t.base = BaseFormat::RGBA;
+          t.bits = 8;
+          for (std::size_t c = 0; c < 4; ++c) {
+            q.code[c] = prim[o + c];
+            t.code[c] = tex[o + c];
+          }
+          const Rgba want = texture_environment(env, p, q, t, fmt);
+          for (std::size_t c = 0; c < 4; ++c) {
+            INFO("x ", x, " y ", y, " scale ", scale, " channel ", c);
+            REQUIRE(out[o + c] == want.code[c]);
+          }
+        }
+      }
+    }
+}
+
 TEST_CASE("fast texture: the environment comparison detects a planted difference, and other widths are refused") {
   std::mt19937 g(43);
   int differing = 0;
