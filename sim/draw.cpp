@@ -380,9 +380,19 @@ void Context::shade_group_runs(const DrawSetup& ds, FragmentSpan& span, int band
   const FastRuns runs{g.weight, g.length, g.runs, g.fragments};
   const bool has_depth = ds.has_depth;
   sc.codes.resize(4 * static_cast<std::size_t>(runs.count));
-  // The depth codes: a replay's, or interpolated here.
+  // The depth codes: a replay's, or interpolated here (straight into the
+  // recording when one is made).
   const std::uint32_t* depth = has_depth ? g.depth : nullptr;
-  if (has_depth && !depth) sc.depth.resize(static_cast<std::size_t>(runs.count));
+  std::uint32_t* depth_out = nullptr;
+  if (has_depth && !depth) {
+    if (recorded) {
+      recorded->depth.resize(static_cast<std::size_t>(runs.count));
+      depth_out = recorded->depth.data();
+    } else {
+      sc.depth.resize(static_cast<std::size_t>(runs.count));
+      depth_out = sc.depth.data();
+    }
+  }
   // A replay's depth comparisons (RecordedGroup::depth_test, used if the group is
   // written by list): taken when made under this depth epoch and function and
   // nothing would be stored; else made, and kept if this call stores nothing
@@ -401,11 +411,8 @@ void Context::shade_group_runs(const DrawSetup& ds, FragmentSpan& span, int band
   sc.coords_from = g.from;
   sc.coords_to = recorded;
   shade_runs_fast(*ds.st, *ds.plan, sc.triangles.data(), static_cast<int>(sc.triangles.size()), runs, ds.flat, ds.shade,
-                  sc.codes.data(), has_depth && !depth ? sc.depth.data() : nullptr, sc);
-  if (has_depth && !depth) {
-    depth = sc.depth.data();
-    if (recorded) recorded->depth = sc.depth;
-  }
+                  sc.codes.data(), depth_out, sc);
+  if (depth_out) depth = depth_out;
   // The fragment operations for the whole group in one call when every run
   // lies inside the write rectangle (window and scissor) and the colour is
   // codes: the group's fragments are distinct pixels (a triangle's are; a run
@@ -432,16 +439,21 @@ void Context::shade_group_runs(const DrawSetup& ds, FragmentSpan& span, int band
       // Each run's pixel indices eight at a time (a run of a small triangle is a
       // few pixels): the last block may write past the run into the next run's
       // slots, which that run then overwrites; the list holds 7 slots more.
-      sc.pixel.resize(static_cast<std::size_t>(runs.count) + 7);
+      std::uint32_t* px;  // (straight into the recording when one is made)
+      if (recorded) {
+        recorded->pixel.resize(static_cast<std::size_t>(runs.count) + 7);
+        px = recorded->pixel.data();
+      } else {
+        sc.pixel.resize(static_cast<std::size_t>(runs.count) + 7);
+        px = sc.pixel.data();
+      }
       const auto W = static_cast<std::uint32_t>(fb_.width());
-      std::uint32_t* px = sc.pixel.data();
       for (int r = 0, off = 0; r < runs.runs; off += runs.length[r], ++r) {
         const auto first = static_cast<std::uint32_t>(g.run_y[r]) * W + static_cast<std::uint32_t>(g.run_x0[r]);
         for (int i = 0; i < runs.length[r]; i += 8)
           for (int j = 0; j < 8; ++j) px[off + i + j] = first + static_cast<std::uint32_t>(i + j);
       }
       pixel = px;
-      if (recorded) recorded->pixel = sc.pixel;
     }
     count_written(band, static_cast<std::uint64_t>(runs.count), static_cast<std::uint64_t>(runs.runs));
     if (dt.known) ++sc.depth_reused;

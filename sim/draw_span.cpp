@@ -455,12 +455,12 @@ void Context::shade_runs_fast(const ShadingState& st, const ShadingPlan& plan, c
       interpolate_code_runs(r.first, r.length, r.runs, g.cov.dwdx, g.cov.area, g.tv[0]->depth, g.tv[1]->depth,
                             g.tv[2]->depth, depth + off);
     });
-  // s/q and t/q of unit u into sc.s, sc.t. texture_coordinates writes up to 3
-  // slots past a triangle's last run: into the next triangle's, which that one
-  // then overwrites, or into the 3 spare slots after the last.
-  auto compute_coordinates = [&](int u) {
+  // s/q and t/q of unit u into s, t (N + 3 slots). texture_coordinates writes up
+  // to 3 slots past a triangle's last run: into the next triangle's, which that
+  // one then overwrites, or into the 3 spare slots after the last.
+  auto compute_coordinates = [&](int u, float* s, float* t) {
     each([&](const GroupTriangle& g, const FastRuns& r, std::size_t off) {
-      texture_coordinates(g.tv, u, g.cov, r, sc.s.data() + off, sc.t.data() + off);
+      texture_coordinates(g.tv, u, g.cov, r, s + off, t + off);
     });
   };
   // Unit u's s/q, t/q: a replay's recorded ones when every triangle of the group
@@ -482,12 +482,17 @@ void Context::shade_runs_fast(const ShadingState& st, const ShadingPlan& plan, c
       ++sc.coords_recorded;
       return;
     }
-    compute_coordinates(u);
-    s_of = sc.s.data();
-    t_of = sc.t.data();
-    if (RecordedGroup* to = sc.coords_to; to && to->s.empty()) {
-      to->s.assign(sc.s.begin(), sc.s.begin() + static_cast<std::ptrdiff_t>(N + 3));
-      to->t.assign(sc.t.begin(), sc.t.begin() + static_cast<std::ptrdiff_t>(N + 3));
+    RecordedGroup* to = sc.coords_to;
+    if (!to || !to->s.empty()) {
+      compute_coordinates(u, sc.s.data(), sc.t.data());
+      s_of = sc.s.data();
+      t_of = sc.t.data();
+    } else {  // the first computed for a recording: straight into it
+      to->s.resize(N + 3);
+      to->t.resize(N + 3);
+      compute_coordinates(u, to->s.data(), to->t.data());
+      s_of = to->s.data();
+      t_of = to->t.data();
       to->tcw.resize(static_cast<std::size_t>(triangles));
       for (int i = 0; i < triangles; ++i)
         for (std::size_t k = 0; k < 3; ++k) to->tcw[static_cast<std::size_t>(i)][k] = tris[i].tv[k]->tcw[static_cast<std::size_t>(u)];

@@ -15,6 +15,9 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
+#include <type_traits>
+#include <utility>
 #include <unordered_map>
 #include <vector>
 
@@ -22,6 +25,32 @@
 #include "pipeline/raster/triangle.h"
 
 namespace ffsim {
+
+// An allocator whose value-less construct leaves a trivial element as it is:
+// resize() then allocates without writing, for arrays the span path fills
+// whole right away (a recorded group's depth codes, pixel list and texture
+// coordinates, written in place instead of copied from the scratch arrays).
+template <class T>
+struct UninitializedAllocator : std::allocator<T> {
+  template <class U>
+  struct rebind {
+    using other = UninitializedAllocator<U>;
+  };
+  UninitializedAllocator() = default;
+  template <class U>
+  UninitializedAllocator(const UninitializedAllocator<U>&) noexcept {}
+  template <class U>
+  void construct(U* p) noexcept {
+    static_assert(std::is_trivially_default_constructible_v<U>);
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+template <class T>
+using FilledVector = std::vector<T, UninitializedAllocator<T>>;
 
 // A triangle of a recorded group: its index in the sequence (its vertices are the
 // current draw's), its coverage, and where its runs start in the group.
@@ -39,15 +68,15 @@ struct RecordedGroup {
   std::vector<int> run_y, run_x0, run_length;
   std::vector<RecordedTriangle> triangles;
   int fragments = 0;
-  std::vector<std::uint32_t> depth;
-  std::vector<std::uint32_t> pixel;  // y·width + x per fragment, 7 spare (empty: not written by list)
+  FilledVector<std::uint32_t> depth;
+  FilledVector<std::uint32_t> pixel;  // y·width + x per fragment, 7 spare (empty: not written by list)
   // The first sampled unit's s/q, t/q as the span path computed them (binary32,
   // one per fragment, 3 spare), and each triangle's s/w, t/w, q/w at its three
   // vertices for that unit; empty when the recording drew no texture. A replay
   // whose triangles have those same bits for a unit takes these values instead
   // of computing them (docs/performance.md 16.6): texture_coordinates is a
   // function of exactly those bits, the coverage and the runs.
-  std::vector<float> s, t;
+  FilledVector<float> s, t;
   std::vector<std::array<std::array<double, 3>, 3>> tcw;
   // The depth test's comparisons on this group's listed fragments (ListedDepthTest,
   // docs/performance.md 17.1), made by a replay while the framebuffer's depth
