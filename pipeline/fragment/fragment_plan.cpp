@@ -282,7 +282,17 @@ struct FixedKernel {
     const I m = static_cast<I>(max());
     v = v < 0 ? 0 : v;
     v = v > m * m ? m * m : v;
-    return static_cast<std::uint32_t>((2 * v + m) / (2 * m));
+    if constexpr (kM == 255) {
+      // floor((2v + 255) / 510) = floor((v + 127) / 255) (2v + 255 is odd, so
+      // the half lost by halving never reaches the next multiple), and
+      // floor(y / 255) = (y + 1 + (y >> 8)) >> 8 for 0 <= y < 65535 (checked for
+      // every y; here y <= 65025 + 127): shifts and adds, where the vectorised
+      // division by 510 took multiplies and shuffles per lane.
+      const auto y = static_cast<std::uint32_t>(v) + 127u;
+      return (y + 1u + (y >> 8)) >> 8;
+    } else {
+      return static_cast<std::uint32_t>((2 * v + m) / (2 * m));
+    }
   }
 
   void channel(const FragmentPlanKey& key, const std::uint32_t* kc, int c, int n, std::uint32_t* out) const {
