@@ -1,9 +1,42 @@
 #include "sim/worker_pool.h"
 
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#endif
+
 namespace ffsim {
 
+namespace {
+
+// A hint to the core that this is a spin-wait loop (x86 PAUSE, ARM YIELD).
+inline void cpu_relax() {
+#if defined(__x86_64__) || defined(__i386__)
+  _mm_pause();
+#elif defined(__aarch64__) || defined(__arm__)
+  asm volatile("yield");
+#endif
+}
+
+// Spins until done() holds or `limit` has passed; true if done() held.
+template <class Done>
+bool spin_until(Done done, std::chrono::microseconds limit) {
+  const auto end = std::chrono::steady_clock::now() + limit;
+  for (;;) {
+    for (int i = 0; i < 64; ++i) {
+      if (done()) return true;
+      cpu_relax();
+    }
+    if (std::chrono::steady_clock::now() >= end) return done();
+  }
+}
+
+}  // namespace
+
 WorkerPool::WorkerPool(int threads) {
-  for (int i = 1; i < threads; ++i) workers_.emplace_back([this] { work(); });
+  const auto t = static_cast<std::size_t>(threads < 1 ? 1 : threads);
+  lo_.assign(t, 0);
+  hi_.assign(t, 0);
+  for (int i = 1; i < threads; ++i) workers_.emplace_back([this, i] { work(i); });
 }
 
 WorkerPool::~WorkerPool() {
@@ -15,10 +48,23 @@ WorkerPool::~WorkerPool() {
   for (std::thread& t : workers_) t.join();
 }
 
-void WorkerPool::drain() {
+int WorkerPool::take(int self) {
+  const auto s = static_cast<std::size_t>(self);
+  if (lo_[s] < hi_[s]) return lo_[s]++;  // its own, front first
+  // Steal the last task of the participant with the most left (ties: the lowest index).
+  std::size_t from = s;
+  int most = 0;
+  for (std::size_t k = 0; k < lo_.size(); ++k)
+    if (hi_[k] - lo_[k] > most) most = hi_[k] - lo_[k], from = k;
+  if (most == 0) return -1;
+  ++stolen_;
+  return --hi_[from];
+}
+
+void WorkerPool::drain(int self) {
   std::unique_lock<std::mutex> lock(m_);
-  while (next_ < n_) {
-    const int i = next_++;
+  for (int i; left_ > 0 && (i = take(self)) >= 0;) {
+    --left_;
     ++running_;
     lock.unlock();
     try {
@@ -29,20 +75,23 @@ void WorkerPool::drain() {
     }
     lock.lock();
     --running_;
+    unfinished_.fetch_sub(1, std::memory_order_release);
   }
-  if (running_ == 0) done_.notify_all();
+  if (left_ == 0 && running_ == 0) done_.notify_all();
 }
 
-void WorkerPool::work() {
+void WorkerPool::work(int self) {
   unsigned long seen = 0;
   for (;;) {
+    spin_until([&] { return stop_.load(std::memory_order_relaxed) || generation_.load(std::memory_order_relaxed) != seen; },
+               kSpin);
     {
       std::unique_lock<std::mutex> lock(m_);
       wake_.wait(lock, [&] { return stop_ || generation_ != seen; });
       if (stop_) return;
       seen = generation_;
     }
-    drain();
+    drain(self);
   }
 }
 
@@ -51,19 +100,25 @@ void WorkerPool::run(int n, const std::function<void(int)>& fn) {
   {
     std::lock_guard<std::mutex> lock(m_);
     fn_ = &fn;
-    n_ = n;
-    next_ = 0;
+    const auto t = static_cast<long long>(lo_.size());
+    for (std::size_t k = 0; k < lo_.size(); ++k) {  // participant k's home: [k·n/T, (k+1)·n/T)
+      lo_[k] = static_cast<int>(static_cast<long long>(n) * static_cast<long long>(k) / t);
+      hi_[k] = static_cast<int>(static_cast<long long>(n) * static_cast<long long>(k + 1) / t);
+    }
+    left_ = n;
     running_ = 0;
+    stolen_ = 0;
+    unfinished_ = n;
     error_ = nullptr;
     ++generation_;
   }
   wake_.notify_all();
-  drain();
+  drain(0);
+  spin_until([&] { return unfinished_.load(std::memory_order_acquire) == 0; }, kSpin);
   std::exception_ptr err;
   {
     std::unique_lock<std::mutex> lock(m_);
-    done_.wait(lock, [&] { return next_ >= n_ && running_ == 0; });
-    n_ = 0;
+    done_.wait(lock, [&] { return left_ == 0 && running_ == 0; });
     fn_ = nullptr;
     err = error_;
   }

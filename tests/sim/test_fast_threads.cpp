@@ -8,6 +8,10 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
+#include <mutex>
+#include <thread>
+#include <vector>
 #include <sstream>
 
 #include "fast_scene.h"
@@ -182,6 +186,49 @@ TEST_CASE("fast threads: the pool runs every task once and rethrows a task's exc
   int sum = 0;
   pool.run(1, [&](int) { sum = 1; });  // usable after an exception
   CHECK(sum == 1);
+}
+
+TEST_CASE("fast threads: the pool runs a task on its home thread first, and steals from the back") {
+  // Two participants, eight tasks: the caller's home is 0..3, the worker's 4..7.
+  // Task 0 holds the caller until the worker has started a task (so the worker
+  // can only have taken its own first, 4); task 4 holds the worker until 5, 6
+  // and 7 have ended, which only the caller can do, by stealing them from the
+  // back. Every wait has a time-out, so a wrong schedule fails instead of hanging.
+  using Clock = std::chrono::steady_clock;
+  auto wait_for = [](auto cond) {
+    const auto end = Clock::now() + std::chrono::seconds(20);
+    while (!cond() && Clock::now() < end) std::this_thread::yield();
+    return cond();
+  };
+  WorkerPool pool(2);
+  for (int round = 0; round < 20; ++round) {
+    const std::thread::id caller = std::this_thread::get_id();
+    std::mutex m;
+    std::vector<int> on_caller, on_worker;
+    std::atomic<int> worker_started{0}, tail_done{0};
+    std::atomic<bool> timed_out{false};
+    pool.run(8, [&](int i) {
+      const bool here = std::this_thread::get_id() == caller;
+      {
+        std::lock_guard<std::mutex> g(m);
+        (here ? on_caller : on_worker).push_back(i);
+      }
+      if (!here) ++worker_started;
+      if (i == 0 && !wait_for([&] { return worker_started.load() > 0; })) timed_out = true;
+      if (i == 4 && !wait_for([&] { return tail_done.load() == 3; })) timed_out = true;
+      if (i >= 5) ++tail_done;
+    });
+    REQUIRE_FALSE(timed_out.load());
+    CHECK(on_caller == std::vector<int>{0, 1, 2, 3, 7, 6, 5});
+    CHECK(on_worker == std::vector<int>{4});
+    CHECK(pool.stolen() == 3);
+  }
+  // One participant: its home is every task, in order; nothing is stolen.
+  WorkerPool alone(1);
+  std::vector<int> order;
+  alone.run(5, [&](int i) { order.push_back(i); });
+  CHECK(order == std::vector<int>{0, 1, 2, 3, 4});
+  CHECK(alone.stolen() == 0);
 }
 
 TEST_CASE("fast threads: a mesh of small triangles is split by rows as whole batches, identical at 1 to 4 threads") {
