@@ -17,7 +17,9 @@ inline void cpu_relax() {
 #endif
 }
 
-// Spins until done() holds or `limit` has passed; true if done() held.
+// Spins until done() holds or `limit` has passed; true if done() held. Every 64
+// checks it yields the CPU, so a thread that has no core of its own (more
+// threads than cores, or a loaded machine) lets the one it waits for run.
 template <class Done>
 bool spin_until(Done done, std::chrono::microseconds limit) {
   const auto end = std::chrono::steady_clock::now() + limit;
@@ -27,6 +29,7 @@ bool spin_until(Done done, std::chrono::microseconds limit) {
       cpu_relax();
     }
     if (std::chrono::steady_clock::now() >= end) return done();
+    std::this_thread::yield();
   }
 }
 
