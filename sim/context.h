@@ -15,6 +15,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -645,10 +646,12 @@ class Context {
   bool raster_cache_applies(const DrawSetup& ds) const;
   // What a recording depends on (sim/raster_cache.h): the draw's window and rows
   // (`rows`), then per triangle its snapped positions, depth codes and
-  // coords_reuse_mask; with a `geometry` serial, the serial in place of the
-  // positions and depth codes.
+  // coords_reuse_mask; with `geometry` words (one glEnd's memo serial, or a
+  // batch's (serial, triangles) pairs: its glEnds in order), the words in place
+  // of the positions and depth codes.
   std::vector<std::int64_t> raster_key(const DrawSetup& ds, const TriangleRef* tris, std::size_t count,
-                                       std::initializer_list<std::int64_t> rows, std::uint64_t geometry = 0) const;
+                                       std::initializer_list<std::int64_t> rows,
+                                       std::span<const std::uint64_t> geometry = {}) const;
   // Rasterize `tris` (rows [y0, y1)) into `rec`, or replay `rec`; both end with
   // the last group shaded.
   void record_sequence(const DrawSetup& ds, const std::vector<TriangleRef>& tris, int y0, int y1, FragmentSpan& span,
@@ -705,7 +708,10 @@ class Context {
   std::vector<TriangleRef> sequence_scratch_;  // a glEnd's triangles (one thread)
   std::uint64_t fast_runs_ = 0, split_batches_ = 0, split_triangles_ = 0, shared_vertex_draws_ = 0;
   // Scratch of the span path, reused from run to run (sim/draw_span.cpp).
-  struct SpanScratch {
+  // (alignas(64): the bands' scratch never share a cache line, so two threads'
+  // writes to their own members do not take the line from each other; the same
+  // for band_spans_, band_counts_ and the bands' RasterRecording)
+  struct alignas(64) SpanScratch {
     std::vector<std::uint16_t> primary, secondary;
     std::array<std::vector<std::uint16_t>, kMaxTextureUnits> texels;
     std::vector<float> s, t;  // s/q, t/q rounded to binary32 (texture_coordinates)
@@ -769,8 +775,14 @@ class Context {
   static constexpr int kLongRun = 64;
   std::shared_ptr<WorkerPool> pool_;
   std::vector<SpanScratch> band_scratch_;
-  std::vector<FragmentSpan> band_spans_;
-  std::vector<std::uint64_t> band_fast_runs_, band_fragments_;  // summed after each split
+  struct alignas(64) BandSpan {
+    FragmentSpan span;
+  };
+  std::vector<BandSpan> band_spans_;
+  struct alignas(64) BandCounts {  // summed after each split
+    std::uint64_t fragments = 0, fast_runs = 0;
+  };
+  std::vector<BandCounts> band_counts_;
   // The batch: window vertices of its polygons, and its triangles in drawing
   // order (a fan of each polygon) with the rows [r0, r1) their bounding boxes may
   // cover; the rows of all of them, and the summed bounding-box area.
@@ -780,6 +792,11 @@ class Context {
   };
   std::vector<WindowVertex> batch_vertices_;
   std::vector<BatchTriangle> batch_triangles_;
+  // The batch's glEnds as (geometry memo serial, triangles it added) pairs, in
+  // order, for the raster key; batch_unkeyed_: some triangle of the batch came
+  // without a serial (the key then holds every triangle's positions).
+  std::vector<std::uint64_t> batch_geometry_;
+  bool batch_unkeyed_ = false;
   int batch_r0_ = 0, batch_r1_ = 0;
   std::int64_t batch_area_ = 0;
   // A run shaded at once into `span` (fixed profiles); false when the run needs

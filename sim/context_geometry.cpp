@@ -156,6 +156,10 @@ void Context::end() {
       }
     }
   };
+  // Threads: the batch's raster key names this glEnd's triangles by its memo
+  // serial (pushed after them), or by their positions when it has none.
+  const std::size_t batch_before = batch_triangles_.size();
+  if (ds.bands && (!shared || geometry == 0)) batch_unkeyed_ = true;
   auto draw_polygon = [&](std::initializer_list<std::size_t> index, std::size_t provoking) {
     if (shared) {
       const std::size_t* k = index.begin();
@@ -200,6 +204,8 @@ void Context::end() {
     default: break;
   }
   if (shared && !ds.bands) draw_sequence(ds, sequence_scratch_, shared_span, geometry);  // through the raster cache
+  if (shared && ds.bands && geometry != 0)  // (no flush since batch_before: a shared glEnd's triangles are added whole)
+    batch_geometry_.insert(batch_geometry_.end(), {geometry, batch_triangles_.size() - batch_before});
   // Shared vertices: the batch is flushed when full only here, after the glEnd's
   // triangles (they index this glEnd's vertices, which a flush would clear).
   if (shared && ds.bands && batch_triangles_.size() >= kBatchTriangles) flush_batch(ds);

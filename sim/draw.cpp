@@ -287,8 +287,9 @@ void Context::count_written(int band, std::uint64_t fragments, std::uint64_t fas
     fragments_written_ += fragments;
     fast_runs_ += fast_runs;
   } else {  // this band's share, summed by flush_batch
-    band_fragments_[static_cast<std::size_t>(band)] += fragments;
-    band_fast_runs_[static_cast<std::size_t>(band)] += fast_runs;
+    BandCounts& k = band_counts_[static_cast<std::size_t>(band)];
+    k.fragments += fragments;
+    k.fast_runs += fast_runs;
   }
 }
 
@@ -704,11 +705,14 @@ void Context::clear_batch() {
   batch_triangles_.clear();
   batch_r0_ = batch_r1_ = 0;
   batch_area_ = 0;
+  batch_geometry_.clear();
+  batch_unkeyed_ = false;
 }
 
 void Context::batch_polygon(std::vector<ClipVertex>& poly, std::size_t provoking, const DrawSetup& ds) {
   const std::size_t base = batch_vertices_.size();
   if (!prepare_polygon(poly, provoking, ds, batch_vertices_)) return;
+  batch_unkeyed_ = true;  // (no memo serial names these triangles)
   for (std::size_t i = base + 1; i + 1 < batch_vertices_.size(); ++i) batch_triangle(base, i, i + 1, ds);
   if (batch_triangles_.size() >= kBatchTriangles) flush_batch(ds);
 }
@@ -738,8 +742,10 @@ void Context::flush_batch(const DrawSetup& ds) {
     Context& c;
     ~Done() {
       c.clear_batch();
-      for (std::uint64_t& k : c.band_fast_runs_) c.fast_runs_ += std::exchange(k, 0);
-      for (std::uint64_t& k : c.band_fragments_) c.fragments_written_ += std::exchange(k, 0);
+      for (BandCounts& k : c.band_counts_) {
+        c.fast_runs_ += std::exchange(k.fast_runs, 0);
+        c.fragments_written_ += std::exchange(k.fragments, 0);
+      }
     }
   } done{*this};
   if (batch_triangles_.empty()) return;
@@ -760,8 +766,7 @@ void Context::flush_batch(const DrawSetup& ds) {
   if (band_scratch_.size() < static_cast<std::size_t>(bands)) {
     band_scratch_.resize(static_cast<std::size_t>(bands));
     band_spans_.resize(static_cast<std::size_t>(bands));
-    band_fast_runs_.resize(static_cast<std::size_t>(bands));
-    band_fragments_.resize(static_cast<std::size_t>(bands));
+    band_counts_.resize(static_cast<std::size_t>(bands));
   }
   ++split_batches_;
   split_triangles_ += batch_triangles_.size();
@@ -775,14 +780,20 @@ void Context::flush_batch(const DrawSetup& ds) {
   if (cache) {
     sequence_scratch_.clear();
     for (const BatchTriangle& t : batch_triangles_) sequence_scratch_.push_back(tri(t));
-    key = raster_key(ds, sequence_scratch_.data(), sequence_scratch_.size(), {r0, rows, bands});
+    // The glEnds' memo serials name the triangles when each of them had one (and
+    // they account for every triangle); else every triangle's positions.
+    std::uint64_t named = 0;
+    for (std::size_t i = 1; i < batch_geometry_.size(); i += 2) named += batch_geometry_[i];
+    const bool by_serial = !batch_unkeyed_ && named == batch_triangles_.size();
+    key = raster_key(ds, sequence_scratch_.data(), sequence_scratch_.size(), {r0, rows, bands},
+                     by_serial ? std::span<const std::uint64_t>(batch_geometry_) : std::span<const std::uint64_t>());
     replay = raster_cache_.find(key);
     if (!replay) recorded.resize(static_cast<std::size_t>(bands));
   }
   pool_->run(bands, [&](int b) {
     const int y0 = r0 + static_cast<int>(std::int64_t{rows} * b / bands);
     const int y1 = r0 + static_cast<int>(std::int64_t{rows} * (b + 1) / bands);
-    FragmentSpan& bs = band_spans_[static_cast<std::size_t>(b)];
+    FragmentSpan& bs = band_spans_[static_cast<std::size_t>(b)].span;
     std::vector<TriangleRef>& seq = band_scratch_[static_cast<std::size_t>(b)].sequence;
     seq.clear();
     for (const BatchTriangle& t : batch_triangles_)  // every triangle, in order; only this band's rows

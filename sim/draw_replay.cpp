@@ -24,17 +24,23 @@ bool Context::raster_cache_applies(const DrawSetup& ds) const {
 }
 
 std::vector<std::int64_t> Context::raster_key(const DrawSetup& ds, const TriangleRef* tris, std::size_t count,
-                                              std::initializer_list<std::int64_t> rows, std::uint64_t geometry) const {
+                                              std::initializer_list<std::int64_t> rows,
+                                              std::span<const std::uint64_t> geometry) const {
+  const bool named = !geometry.empty();
   std::vector<std::int64_t> key;
-  key.reserve(14 + rows.size() + (geometry ? 1 : 10) * count);
+  key.reserve(15 + rows.size() + geometry.size() + (named ? 1 : 10) * count);
   // The first word tells the two forms apart: 0, every triangle's positions and
-  // depth codes; 1, the geometry memo's serial, which names them (a serial is
-  // never reused, and its entry's content never changes; the triangles are the
-  // glEnd's, made from its vertices by its mode, which the entry's key holds).
-  key.insert(key.end(), {geometry ? 1 : 0, profile_.subpixel_bits, fb_.width(), fb_.height(), ds.vx, ds.vy, ds.cx0,
+  // depth codes; 1, geometry memo serials, which name them (a serial is never
+  // reused, and its entry's content never changes; the triangles are the
+  // glEnd's, made from its vertices by its mode, which the entry's key holds, and
+  // a batch leaves out those missing the window, which the key's window fixes).
+  key.insert(key.end(), {named ? 1 : 0, profile_.subpixel_bits, fb_.width(), fb_.height(), ds.vx, ds.vy, ds.cx0,
                          ds.cx1, ds.cy0, ds.cy1, ds.has_depth ? 1 : 0, static_cast<std::int64_t>(count)});
   key.insert(key.end(), rows);
-  if (geometry) key.push_back(static_cast<std::int64_t>(geometry));
+  if (named) {
+    key.push_back(static_cast<std::int64_t>(geometry.size()));
+    for (const std::uint64_t w : geometry) key.push_back(static_cast<std::int64_t>(w));
+  }
   // coords_reuse_mask matters to the grouping only through which triangles'
   // masks are equal (a group closes when a triangle's differs from the group's):
   // each mask is keyed as the index of its first appearance in the sequence, so
@@ -44,7 +50,7 @@ std::vector<std::int64_t> Context::raster_key(const DrawSetup& ds, const Triangl
   first_seen.fill(-1);
   int distinct = 0;
   for (std::size_t i = 0; i < count; ++i) {
-    if (!geometry)
+    if (!named)
       for (const WindowVertex* v : tris[i]) key.insert(key.end(), {v->p.x, v->p.y, ds.has_depth ? v->depth : 0});
     int& label = first_seen[coords_reuse_mask(*ds.plan, tris[i]) & 31u];
     if (label < 0) label = distinct++;
@@ -60,7 +66,9 @@ void Context::draw_sequence(const DrawSetup& ds, const std::vector<TriangleRef>&
     shade_group(ds, span, -1);
     return;
   }
-  std::vector<std::int64_t> key = raster_key(ds, tris.data(), tris.size(), {ds.cy0, ds.cy1}, geometry);
+  std::vector<std::int64_t> key = raster_key(ds, tris.data(), tris.size(), {ds.cy0, ds.cy1},
+                                             geometry ? std::span<const std::uint64_t>(&geometry, 1)
+                                                      : std::span<const std::uint64_t>());
   if (const std::vector<RasterRecording>* rec = raster_cache_.find(key)) {
     replay_sequence(ds, tris, rec->front(), span, -1);
     return;

@@ -103,7 +103,7 @@ struct RecordedLongRun {
 
 // One sequence's groups and long runs in drawing order, and the grouping
 // statistics it added (Context::span_group_stats).
-struct RasterRecording {
+struct alignas(64) RasterRecording {  // (a band's own cache lines: the bands record concurrently)
   struct Step {
     bool long_run = false;
     std::size_t index = 0;  // into groups or long_runs

@@ -6,6 +6,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <array>
 #include <utility>
 #include <vector>
@@ -420,4 +421,60 @@ TEST_CASE("raster cache: keys are compared whole, and the cache stays within its
   cache.clear();
   CHECK(cache.bytes() == 0);
   CHECK(cache.find({104}) == nullptr);
+}
+
+TEST_CASE("raster cache: with threads a batch is keyed by its glEnds' memo serials, in order, or by positions") {
+  // Two threads with deferred draws: each pass's three strips are one batch, split
+  // in bands. A batch whose glEnds all have geometry memo serials is keyed by
+  // them (docs/performance.md 19.4): the same strips again hit; a strip moved by
+  // one ulp, or the strips in another order, miss. A flat-shaded pass (no shared
+  // vertices, so no serial) is keyed by positions: a miss, then a hit when
+  // repeated. Every pass's buffers equal the cache off and the per-fragment path.
+  constexpr int W = 128, H = 96;
+  Context c(profile_named("geforce256"), W, H), off(profile_named("geforce256"), W, H),
+      reference(profile_named("geforce256"), W, H);
+  off.set_raster_cache(false);
+  reference.set_fast_paths(false);
+  for (Context* x : {&c, &off, &reference}) {
+    x->set_threads(2);
+    x->set_defer_draws(true);
+    ortho_window(*x);
+    x->enable(gl::BLEND);
+    x->blendFunc(gl::ONE, gl::ONE);
+  }
+  auto pass = [&](std::array<int, 3> order, double nudge, bool flat) {
+    for (Context* x : {&c, &off, &reference}) {
+      x->flush_deferred();
+      x->shadeModel(flat ? gl::FLAT : gl::SMOOTH);
+      for (const int s : order) {
+        x->begin(gl::TRIANGLE_STRIP);
+        for (int i = 0; i <= 8; ++i)
+          for (int j : {1, 0}) {
+            x->color4(0.05 * i, 0.03 * (s + 1), 0.02 * j + 0.01, 0.1);
+            const double px = 2.5 + 15.5 * i;
+            x->vertex3(s == 1 && nudge != 0 ? std::nextafter(px, 1e9) : px, 1.5 + 31.0 * (s + j), 0);
+          }
+        x->end();
+      }
+      x->flush_deferred();
+    }
+    REQUIRE(buffer_hashes(c) == buffer_hashes(off));
+    REQUIRE(buffer_hashes(c) == buffer_hashes(reference));
+  };
+  pass({0, 1, 2}, 0, false);
+  CHECK(c.split_batches() >= 1);
+  CHECK(c.raster_cache().misses() == 1);
+  pass({0, 1, 2}, 0, false);
+  CHECK(c.raster_cache().hits() == 1);
+  pass({0, 1, 2}, 1, false);  // strip 1 one ulp to the right: a new serial
+  CHECK(c.raster_cache().misses() == 2);
+  pass({0, 2, 1}, 0, false);  // the same glEnds (memo hits) in another order
+  CHECK(c.raster_cache().misses() == 3);
+  pass({0, 1, 2}, 0, false);
+  CHECK(c.raster_cache().hits() == 2);
+  pass({0, 1, 2}, 0, true);  // flat: keyed by positions
+  CHECK(c.raster_cache().misses() == 4);
+  pass({0, 1, 2}, 0, true);
+  CHECK(c.raster_cache().hits() == 3);
+  CHECK(off.raster_cache().hits() + off.raster_cache().misses() == 0);
 }
