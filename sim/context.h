@@ -456,6 +456,9 @@ class Context {
   // the pool. Batches so split, and the triangles they held.
   std::uint64_t split_batches() const { return split_batches_; }
   std::uint64_t split_triangles() const { return split_triangles_; }
+  // Pixel rectangles (CopyPixels) whose rows went through the fragment
+  // operations in bands on the pool (docs/performance.md 19.6).
+  std::uint64_t split_pixel_rects() const { return split_pixel_rects_; }
   // glEnds whose vertices were put in window form once and shared by their
   // polygons (span path, smooth shading, every vertex inside the view volume).
   std::uint64_t shared_vertex_draws() const { return shared_vertex_draws_; }
@@ -521,6 +524,12 @@ class Context {
   // are known (fixed profiles): row m's 4·width codes from row_codes(m, to).
   template <class RowCodes>
   void emit_color_code_rows(int width, int height, RowCodes row_codes);
+  // Threads: emit_color_code_rows' rows (image row, window row) through the
+  // fragment operations in bands on the pool; row r's fragments are its codes
+  // from column `first` on, at window x0.
+  template <class RowCodes>
+  void code_rows_in_bands(const std::vector<std::array<int, 2>>& rows, int width, int x0, int first,
+                          int row_fragments, std::uint32_t z, RowCodes& row_codes_of);
   template <class T>
   std::optional<pixel::ByteTexelTables> byte_texel_tables(int dims, GLenum format, GLenum type,
                                                           const TextureImage& shape) const;
@@ -631,6 +640,9 @@ class Context {
   // bounding box misses the window).
   void batch_triangle(std::size_t a, std::size_t b, std::size_t c, const DrawSetup& ds);
   void flush_batch(const DrawSetup& ds);
+  // The pool (made or remade for threads()) and scratch, spans and counters for
+  // at least `bands` bands.
+  void ready_bands(int bands);
   void clear_batch();
   // Triangles in drawing order, as raster_triangle takes them.
   using TriangleRef = std::array<const WindowVertex*, 3>;
@@ -707,6 +719,7 @@ class Context {
   std::vector<glm::dvec4> object_scratch_;  // a glEnd's object positions, for the memo
   std::vector<TriangleRef> sequence_scratch_;  // a glEnd's triangles (one thread)
   std::uint64_t fast_runs_ = 0, split_batches_ = 0, split_triangles_ = 0, shared_vertex_draws_ = 0;
+  std::uint64_t split_pixel_rects_ = 0;
   // Scratch of the span path, reused from run to run (sim/draw_span.cpp).
   // (alignas(64): the bands' scratch never share a cache line, so two threads'
   // writes to their own members do not take the line from each other; the same

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "pipeline/gl/enum_names.h"
@@ -16,6 +17,7 @@
 #include "pipeline/pixel_transfer/transfer_plan.h"
 #include "pipeline/pixel_transfer/unpack.h"
 #include "sim/context.h"
+#include "sim/worker_pool.h"
 
 namespace ffsim {
 
@@ -165,6 +167,28 @@ void Context::emit_color_code_rows(int width, int height, RowCodes row_codes_of)
     one_to_one = xe - xa == 1 && (next < 0 || xa == next) && n - first == xa - cols[static_cast<std::size_t>(first)][0];
     next = xe;
   }
+  // Threads (docs/performance.md 19.6): when each image row lands on exactly one
+  // window row, all of them distinct, and nothing shades the fragments, the rows
+  // go to the fragment operations in bands on the pool. A pixel receives one
+  // fragment, from one row, whatever the thread: the same buffers as in order.
+  if (threads_ > 1 && !probe_.enabled() && !on_explain_ && one_to_one && !shading_active(shading_plan(shading_state()))) {
+    std::vector<std::array<int, 2>> rows;  // (image row m, its window row), rows monotone
+    bool single = true;
+    for (int m = 0, dir = 0; m < height && single; ++m) {
+      int x0, x1, y0, y1;
+      group_extent(0, m, x0, x1, y0, y1);
+      const int ya = std::max(y0, 0), yb = std::min(y1, fb_.height());
+      if (ya >= yb) continue;
+      const int d = rows.empty() ? dir : (ya > rows.back()[1] ? 1 : ya < rows.back()[1] ? -1 : 0);
+      single = yb - ya == 1 && (rows.empty() || (d != 0 && (dir == 0 || d == dir)));
+      dir = d;
+      rows.push_back({m, ya});
+    }
+    if (single && rows.size() >= 2 && static_cast<std::int64_t>(rows.size()) * row_fragments >= kSplitFragments) {
+      code_rows_in_bands(rows, width, cols[static_cast<std::size_t>(first)][0], first, row_fragments, z, row_codes_of);
+      return;
+    }
+  }
   FragmentSpan span;  // reused from row to row
   std::vector<std::uint16_t> row_codes(4 * static_cast<std::size_t>(width));
   span.count = row_fragments;
@@ -202,6 +226,48 @@ void Context::emit_color_code_rows(int width, int height, RowCodes row_codes_of)
       pixel_fragments(span);
     }
   }
+}
+
+template <class RowCodes>
+void Context::code_rows_in_bands(const std::vector<std::array<int, 2>>& rows, int width, int x0, int first,
+                                 int row_fragments, std::uint32_t z, RowCodes& row_codes_of) {
+  // write_fragments' work for every row (its plan update once), the rows cut
+  // into bands; counters summed after the run, also when a band throws.
+  update_fragment_plan();
+  FragmentBuffers b;
+  b.codes = fb_.codes().data();
+  if (fb_.has_stencil()) b.stencil = fb_.stencil().data();
+  if (fb_.has_depth()) b.depth = fb_.depth_untracked();  // (each change reported: depth_changed)
+  const int bands = static_cast<int>(std::min<std::size_t>(4 * static_cast<std::size_t>(threads_), rows.size()));
+  ready_bands(bands);
+  struct Sum {
+    Context& c;
+    ~Sum() {
+      for (BandCounts& k : c.band_counts_) c.fragments_written_ += std::exchange(k.fragments, 0);
+    }
+  } sum{*this};
+  ++split_pixel_rects_;
+  const bool has_depth = fb_.has_depth();
+  pool_->run(bands, [&](int k) {
+    FragmentSpan& span = band_spans_[static_cast<std::size_t>(k)].span;
+    span.count = row_fragments;
+    span.x0 = x0;
+    span.codes.resize(4 * static_cast<std::size_t>(row_fragments));
+    span.values.clear();
+    if (has_depth) span.depth.assign(static_cast<std::size_t>(row_fragments), z);
+    else span.depth.clear();
+    std::vector<std::uint16_t> row_codes(4 * static_cast<std::size_t>(width));
+    const std::size_t i0 = rows.size() * static_cast<std::size_t>(k) / static_cast<std::size_t>(bands);
+    const std::size_t i1 = rows.size() * static_cast<std::size_t>(k + 1) / static_cast<std::size_t>(bands);
+    for (std::size_t i = i0; i < i1; ++i) {
+      row_codes_of(rows[i][0], row_codes.data());
+      std::copy_n(row_codes.data() + 4 * static_cast<std::size_t>(first), 4 * static_cast<std::size_t>(row_fragments),
+                  span.codes.data());
+      span.y = rows[i][1];
+      band_counts_[static_cast<std::size_t>(k)].fragments += static_cast<std::uint64_t>(row_fragments);
+      if (run_fragment_plan(*fragment_current_plan_, fragment_current_constants_, span, b, fb_.width())) fb_.depth_changed();
+    }
+  });
 }
 
 void Context::write_stencil_rect(int, int, int w, int h, const std::vector<std::int64_t>& idx) {

@@ -223,7 +223,7 @@ Context::DrawSetup Context::draw_setup(const ShadingState& st, const ShadingPlan
     // (each change is reported: write_span, shade_group_runs)
     if (fb_.has_depth()) ds.buffers.depth = fb_.depth_untracked();
   }
-  if (ds.bands && (!pool_ || pool_->threads() != threads_)) pool_ = std::make_shared<WorkerPool>(threads_);
+  if (ds.bands) ready_bands(0);
   return ds;
 }
 
@@ -734,6 +734,15 @@ void Context::batch_triangle(std::size_t a, std::size_t b, std::size_t c, const 
   batch_triangles_.push_back({{static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), static_cast<std::uint32_t>(c)}, r0, r1});
 }
 
+void Context::ready_bands(int bands) {
+  if (!pool_ || pool_->threads() != threads_) pool_ = std::make_shared<WorkerPool>(threads_);
+  if (band_scratch_.size() < static_cast<std::size_t>(bands)) {
+    band_scratch_.resize(static_cast<std::size_t>(bands));
+    band_spans_.resize(static_cast<std::size_t>(bands));
+    band_counts_.resize(static_cast<std::size_t>(bands));
+  }
+}
+
 void Context::flush_batch(const DrawSetup& ds) {
   // Emptied however this ends (a band may throw: WorkerPool::run rethrows once
   // every band has ended); the band counters are summed likewise, so the counts
@@ -763,11 +772,7 @@ void Context::flush_batch(const DrawSetup& ds) {
     draw_sequence(ds, sequence_scratch_, span);
     return;
   }
-  if (band_scratch_.size() < static_cast<std::size_t>(bands)) {
-    band_scratch_.resize(static_cast<std::size_t>(bands));
-    band_spans_.resize(static_cast<std::size_t>(bands));
-    band_counts_.resize(static_cast<std::size_t>(bands));
-  }
+  ready_bands(bands);
   ++split_batches_;
   split_triangles_ += batch_triangles_.size();
   const int r0 = batch_r0_;

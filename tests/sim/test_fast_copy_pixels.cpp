@@ -103,3 +103,65 @@ TEST_CASE("fast copy pixels: rows copied whole where each column lands on one pi
       }
   CHECK(compared == 5 * 5 * 6);
 }
+
+TEST_CASE("fast copy pixels: rows in bands on 2 and 3 threads == one thread == the reference path") {
+  // CopyPixels COLOR of large rectangles (docs/performance.md 19.6): when every
+  // image row lands on one window row of its own and nothing shades the
+  // fragments, the rows go through the fragment operations in bands on the pool.
+  // Random scenes on a 128 x 96 window, random fragment operations (blending,
+  // alpha, stencil, depth, masks), zooms that split (y = 1, -1, x = 1) and that
+  // do not (y = 2 or 0.5: a row on two window rows or two rows on one; x = 0.5:
+  // no row copy; texturing on: shaded per fragment), sources overlapping the
+  // destination. Buffers and fragment counts must equal one thread's and the
+  // reference's.
+#ifdef FFSIM_SANITIZE
+  constexpr int kCases = 6;
+#else
+  constexpr int kCases = 24;
+#endif
+  constexpr int W = 128, H = 96;
+  std::uint64_t split = 0;
+  for (const char* profile : {"geforce256", "rgba12"})
+    for (int k = 0; k < kCases; ++k) {
+      const auto seed = static_cast<std::uint32_t>(7400 + k);
+      Context one(profile_named(profile), W, H), two(profile_named(profile), W, H), three(profile_named(profile), W, H),
+          slow(profile_named(profile), W, H);
+      two.set_threads(2);
+      three.set_threads(3);
+      slow.set_fast_paths(false);
+      SceneOptions opt;
+      opt.copy_pixels = false;
+      for (Context* c : {&one, &two, &three, &slow}) {
+        draw_random_scene(*c, seed, opt);
+        SceneRng r(seed + 1);
+        for (int copy = 0; copy < 3; ++copy) {
+          for (int u = 0; u < 2; ++u) random_texture_or_off(*c, r, u, static_cast<std::uint32_t>(10 + u), 10);
+          c->disable(gl::REGISTER_COMBINERS_NV);
+          if (r.b(80)) c->disable(gl::COLOR_SUM);
+          random_fragment_ops(*c, r);
+          static const double kZoomX[] = {1, 1, 1, 1, 0.5, 2};
+          static const double kZoomY[] = {1, 1, 1, -1, -1, 2, 0.5};
+          const double zy = r.pick(kZoomY);
+          c->pixelZoom(r.pick(kZoomX), zy);
+          c->matrixMode(gl::PROJECTION);
+          c->loadIdentity();
+          c->ortho(0, W, 0, H, -1, 1);
+          c->matrixMode(gl::MODELVIEW);
+          c->loadIdentity();
+          c->rasterPos2(r.d(0, 8), zy < 0 ? r.d(H - 8, H) : r.d(0, 8));  // (rows going down from the top)
+          c->copyPixels(r.i(-10, 20), r.i(-10, 20), r.i(100, 140), r.i(70, 110), gl::COLOR);
+        }
+      }
+      INFO("profile ", profile, " seed ", seed);
+      REQUIRE(buffer_hashes(two) == buffer_hashes(one));
+      REQUIRE(buffer_hashes(three) == buffer_hashes(one));
+      REQUIRE(buffer_hashes(one) == buffer_hashes(slow));
+      CHECK(two.fragments_written() == one.fragments_written());
+      CHECK(three.fragments_written() == one.fragments_written());
+      CHECK(one.split_pixel_rects() == 0);
+      CHECK(two.split_pixel_rects() == three.split_pixel_rects());
+      split += two.split_pixel_rects();
+    }
+  MESSAGE("copies split into bands: " << split << " of " << 2 * kCases * 3);
+  CHECK(split >= static_cast<std::uint64_t>(kCases));
+}
