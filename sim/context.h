@@ -172,6 +172,8 @@ class Context {
   // dithering, masks) and the framebuffer. Called by the rasterizer and by
   // pixel_fragments.
   void write_fragments(FragmentSpan& span);
+  // The framebuffer's arrays as the fragment operations take them.
+  FragmentBuffers fragment_buffers();
 
   // ---- matrices (sim/context_matrix.cpp, GL121 §2.10.2) ---------------------
   void matrixMode(GLenum mode);  // MODELVIEW, PROJECTION, TEXTURE, COLOR
@@ -643,6 +645,8 @@ class Context {
   // The pool (made or remade for threads()) and scratch, spans and counters for
   // at least `bands` bands.
   void ready_bands(int bands);
+  // The bands' fragment and run counts added to the Context's, and zeroed.
+  void sum_band_counts();
   void clear_batch();
   // Triangles in drawing order, as raster_triangle takes them.
   using TriangleRef = std::array<const WindowVertex*, 3>;

@@ -10,6 +10,8 @@
 // - write_fragments (scissor, alpha, stencil, depth, blend, dither, masks,
 //   GL121 §4.1): the cached per-fragment plan for the current state
 //   (pipeline/fragment/fragment_plan.h).
+#include <utility>
+
 #include "sim/context.h"
 
 namespace ffsim {
@@ -43,14 +45,26 @@ void Context::pixel_fragments(FragmentSpan& span) {
   write_fragments(span);
 }
 
-void Context::write_fragments(FragmentSpan& span) {
-  fragments_written_ += static_cast<std::uint64_t>(span.count);
-  update_fragment_plan();
+FragmentBuffers Context::fragment_buffers() {
   FragmentBuffers b;
   if (fb_.format().float_color()) b.values = fb_.values().data();
   else b.codes = fb_.codes().data();
   if (fb_.has_stencil()) b.stencil = fb_.stencil().data();
-  if (fb_.has_depth()) b.depth = fb_.depth_untracked();  // (a change is reported below)
+  if (fb_.has_depth()) b.depth = fb_.depth_untracked();  // (its writers report a change: depth_changed)
+  return b;
+}
+
+void Context::sum_band_counts() {
+  for (BandCounts& k : band_counts_) {
+    fast_runs_ += std::exchange(k.fast_runs, 0);
+    fragments_written_ += std::exchange(k.fragments, 0);
+  }
+}
+
+void Context::write_fragments(FragmentSpan& span) {
+  fragments_written_ += static_cast<std::uint64_t>(span.count);
+  update_fragment_plan();
+  const FragmentBuffers b = fragment_buffers();  // (a depth change is reported below)
   // --probe: the probed pixel's fragment and framebuffer before and after the
   // per-fragment operations (the plan itself is not instrumented).
   int probed = -1;

@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <utility>
 #include <vector>
 
 #include "pipeline/gl/enum_names.h"
@@ -234,17 +233,12 @@ void Context::code_rows_in_bands(const std::vector<std::array<int, 2>>& rows, in
   // write_fragments' work for every row (its plan update once), the rows cut
   // into bands; counters summed after the run, also when a band throws.
   update_fragment_plan();
-  FragmentBuffers b;
-  b.codes = fb_.codes().data();
-  if (fb_.has_stencil()) b.stencil = fb_.stencil().data();
-  if (fb_.has_depth()) b.depth = fb_.depth_untracked();  // (each change reported: depth_changed)
+  const FragmentBuffers b = fragment_buffers();
   const int bands = static_cast<int>(std::min<std::size_t>(4 * static_cast<std::size_t>(threads_), rows.size()));
   ready_bands(bands);
   struct Sum {
     Context& c;
-    ~Sum() {
-      for (BandCounts& k : c.band_counts_) c.fragments_written_ += std::exchange(k.fragments, 0);
-    }
+    ~Sum() { c.sum_band_counts(); }
   } sum{*this};
   ++split_pixel_rects_;
   const bool has_depth = fb_.has_depth();

@@ -217,11 +217,7 @@ Context::DrawSetup Context::draw_setup(const ShadingState& st, const ShadingPlan
   if (ds.direct_writes) {
     update_fragment_plan();
     if (combiners_.enabled) combiner_plan();
-    if (fb_.format().float_color()) ds.buffers.values = fb_.values().data();
-    else ds.buffers.codes = fb_.codes().data();
-    if (fb_.has_stencil()) ds.buffers.stencil = fb_.stencil().data();
-    // (each change is reported: write_span, shade_group_runs)
-    if (fb_.has_depth()) ds.buffers.depth = fb_.depth_untracked();
+    ds.buffers = fragment_buffers();  // (a depth change is reported: write_span, shade_group_runs)
   }
   if (ds.bands) ready_bands(0);
   return ds;
@@ -751,10 +747,7 @@ void Context::flush_batch(const DrawSetup& ds) {
     Context& c;
     ~Done() {
       c.clear_batch();
-      for (BandCounts& k : c.band_counts_) {
-        c.fast_runs_ += std::exchange(k.fast_runs, 0);
-        c.fragments_written_ += std::exchange(k.fragments, 0);
-      }
+      c.sum_band_counts();
     }
   } done{*this};
   if (batch_triangles_.empty()) return;
