@@ -398,6 +398,16 @@ class Context {
     threads_ = n < 1 ? 1 : n;
   }
   int threads() const { return threads_; }
+  // The least work worth splitting over the threads, in fragments (estimated: a
+  // batch's triangles' areas, a CopyPixels' image). Below it a draw stays on the
+  // calling thread, where it is faster (docs/performance.md 20). The tests lower
+  // it to split small scenes; the default is measured.
+  static constexpr std::int64_t kSplitFragments = 4096;
+  void set_split_fragments(std::int64_t n) {
+    flush_deferred();
+    split_fragments_ = n < 1 ? 1 : n;
+  }
+  std::int64_t split_fragments() const { return split_fragments_; }
   // Deferred draws (threads > 1, no probe): a glEnd leaves its batch of
   // triangles pending, so the next glEnd's polygons join it and the pool splits
   // one large batch instead of one per strip (docs/performance.md). The caller
@@ -453,9 +463,9 @@ class Context {
   // Runs of fragments the span path has shaded so far (tests check it is taken).
   std::uint64_t fast_runs() const { return fast_runs_; }
   // Threads (threads() > 1, no probe): the polygons of a glEnd are prepared in
-  // batches of up to kBatchTriangles triangles; a batch whose triangles' bounding
-  // boxes sum to at least kSplitFragments pixels is rasterized in row bands on
-  // the pool. Batches so split, and the triangles they held.
+  // batches of up to kBatchTriangles triangles; a batch whose triangles' areas
+  // sum to at least split_fragments() pixels is rasterized in row bands on the
+  // pool. Batches so split, and the triangles they held.
   std::uint64_t split_batches() const { return split_batches_; }
   std::uint64_t split_triangles() const { return split_triangles_; }
   // Pixel rectangles (CopyPixels) whose rows went through the fragment
@@ -782,10 +792,10 @@ class Context {
     Rgba out;
   };
   mutable std::array<ColorMemo, 2> color_memo_;
-  // Threads: the pool (rebuilt when threads() changes) and per-band scratch.
-  // A batch whose triangles' bounding boxes (clipped to the window) sum to at
-  // least kSplitFragments pixels is split into bands of rows.
-  static constexpr std::int64_t kSplitFragments = 4096;
+  // Threads: the pool (borrowed again when threads() changes) and per-band
+  // scratch. A batch whose triangles' areas (each at most its box clipped to the
+  // window) sum to at least split_fragments_ pixels is split into bands of rows.
+  std::int64_t split_fragments_ = kSplitFragments;
   static constexpr std::size_t kBatchTriangles = 2048;  // bounds the batch's memory
   // The span path shades a run of this many fragments or more on its own, not in
   // a group (sim/draw.cpp raster_triangle).

@@ -183,7 +183,7 @@ void Context::emit_color_code_rows(int width, int height, RowCodes row_codes_of)
       dir = d;
       rows.push_back({m, ya});
     }
-    if (single && rows.size() >= 2 && static_cast<std::int64_t>(rows.size()) * row_fragments >= kSplitFragments) {
+    if (single && rows.size() >= 2 && static_cast<std::int64_t>(rows.size()) * row_fragments >= split_fragments_) {
       code_rows_in_bands(rows, width, cols[static_cast<std::size_t>(first)][0], first, row_fragments, z, row_codes_of);
       return;
     }

@@ -206,7 +206,8 @@ Context::DrawSetup Context::draw_setup(const ShadingState& st, const ShadingPlan
   // its own pixel, so each pixel sees the same fragments in the same order as
   // with one thread. Shared state is made ready here (fragment plan, combiner
   // plan), then only read; the probe forces one thread (it records in order).
-  ds.bands = threads_ > 1 && !probe_.enabled();
+  ds.bands = threads_ > 1 && !probe_.enabled() &&
+             std::int64_t{ds.cx1 - ds.cx0} * (ds.cy1 - ds.cy0) >= split_fragments_;
   // No span-path group is open between glEnds (each ends with shade_group, or
   // its guard on an exception); emptied again in case one was left.
   clear_group(span_scratch_);
@@ -726,12 +727,18 @@ void Context::batch_triangle(std::size_t a, std::size_t b, std::size_t c, const 
   if (r1 <= r0 || c1 <= c0) return;
   batch_r0_ = batch_triangles_.empty() ? r0 : std::min(batch_r0_, r0);
   batch_r1_ = batch_triangles_.empty() ? r1 : std::max(batch_r1_, r1);
-  batch_area_ += std::int64_t{r1 - r0} * (c1 - c0);
+  // Its fragments, about: its area in pixels, at most its clipped box's (in
+  // double: snapped coordinates reach 2^30, pipeline/raster/triangle.cpp).
+  const double cross = (static_cast<double>(pb.x - pa.x) * static_cast<double>(pc.y - pa.y) -
+                        static_cast<double>(pb.y - pa.y) * static_cast<double>(pc.x - pa.x)) /
+                       std::ldexp(2.0, 2 * S);
+  const double box = static_cast<double>(r1 - r0) * (c1 - c0);
+  batch_area_ += static_cast<std::int64_t>(std::min(std::abs(cross), box));
   batch_triangles_.push_back({{static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), static_cast<std::uint32_t>(c)}, r0, r1});
 }
 
 void Context::ready_bands(int bands) {
-  if (!pool_ || pool_->threads() != threads_) pool_ = std::make_shared<WorkerPool>(threads_);
+  if (!pool_ || pool_->threads() != threads_) pool_ = WorkerPool::borrow(threads_);
   if (band_scratch_.size() < static_cast<std::size_t>(bands)) {
     band_scratch_.resize(static_cast<std::size_t>(bands));
     band_spans_.resize(static_cast<std::size_t>(bands));
@@ -758,7 +765,7 @@ void Context::flush_batch(const DrawSetup& ds) {
   // at least one row each.
   const int rows = batch_r1_ - batch_r0_;
   const int bands = std::min(4 * threads_, rows);
-  if (batch_area_ < kSplitFragments || bands < 2) {  // not worth the pool: in order on this thread
+  if (batch_area_ < split_fragments_ || bands < 2) {  // not worth the pool: in order on this thread
     FragmentSpan span;
     sequence_scratch_.clear();
     for (const BatchTriangle& t : batch_triangles_) sequence_scratch_.push_back(tri(t));

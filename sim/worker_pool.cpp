@@ -1,5 +1,7 @@
 #include "sim/worker_pool.h"
 
+#include <algorithm>
+
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
 #endif
@@ -33,7 +35,46 @@ bool spin_until(Done done, std::chrono::microseconds limit) {
   }
 }
 
+// The idle pools, owned here until borrowed. Each borrowed pool's deleter holds
+// the registry, so a pool dropped during static destruction still finds it.
+struct IdlePools {
+  static constexpr std::size_t kKeep = 4;  // idle pools kept; the oldest goes first
+  std::mutex m;
+  std::vector<std::unique_ptr<WorkerPool>> idle;
+  IdlePools() { idle.reserve(kKeep); }  // a return never allocates (deleters must not throw)
+};
+
+std::shared_ptr<IdlePools> idle_pools() {
+  static const std::shared_ptr<IdlePools> pools = std::make_shared<IdlePools>();
+  return pools;
+}
+
 }  // namespace
+
+std::shared_ptr<WorkerPool> WorkerPool::borrow(int threads) {
+  std::shared_ptr<IdlePools> reg = idle_pools();
+  std::unique_ptr<WorkerPool> pool;
+  {
+    std::lock_guard<std::mutex> lock(reg->m);
+    // The most recently returned pool of that size (its threads ran last).
+    for (auto it = reg->idle.rbegin(); it != reg->idle.rend(); ++it)
+      if ((*it)->threads() == std::max(threads, 1)) {
+        pool = std::move(*it);
+        reg->idle.erase(std::next(it).base());
+        break;
+      }
+  }
+  if (!pool) pool = std::make_unique<WorkerPool>(threads);
+  return std::shared_ptr<WorkerPool>(pool.release(), [reg](WorkerPool* p) {
+    std::unique_ptr<WorkerPool> oldest;  // evicted when full; joined after the unlock
+    std::lock_guard<std::mutex> lock(reg->m);
+    if (reg->idle.size() >= IdlePools::kKeep) {
+      oldest = std::move(reg->idle.front());
+      reg->idle.erase(reg->idle.begin());
+    }
+    reg->idle.emplace_back(p);
+  });
+}
 
 WorkerPool::WorkerPool(int threads) {
   const auto t = static_cast<std::size_t>(threads < 1 ? 1 : threads);

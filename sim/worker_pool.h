@@ -24,6 +24,7 @@
 #include <condition_variable>
 #include <exception>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -37,6 +38,11 @@ class WorkerPool {
   WorkerPool(const WorkerPool&) = delete;
   WorkerPool& operator=(const WorkerPool&) = delete;
   int threads() const { return static_cast<int>(workers_.size()) + 1; }
+  // A pool of `threads` from the process's idle pools, or a new one; it goes back
+  // to them when the last shared_ptr to it is dropped. A Context replayed per
+  // frame (ffsim bench, the paper run) then starts no thread per frame
+  // (docs/performance.md 20). A borrowed pool has one user at a time.
+  static std::shared_ptr<WorkerPool> borrow(int threads);
   // The first exception a task throws is rethrown here (after all tasks ended).
   void run(int n, const std::function<void(int)>& fn);
   // Tasks of the last run() that ran on a participant other than their home's.

@@ -247,6 +247,7 @@ TEST_CASE("fast threads: a mesh of small triangles is split by rows as whole bat
           if (!fast && threads != 3) continue;  // the per-fragment path once is enough
           Context many(profile_named(profile), kMeshW, kMeshH);
           many.set_threads(threads);
+          many.set_split_fragments(1024);  // (a strip covers about 3200 pixels)
           many.set_fast_paths(fast);
           draw_mesh_scene(many, seed);
           INFO("profile ", std::string(profile), " seed ", seed, " threads ", threads, " fast ", fast);
@@ -283,6 +284,93 @@ TEST_CASE("fast threads: overlapping triangles of one batch keep their order in 
         CHECK(many.split_batches() == 1);
       }
     }
+}
+
+namespace {
+
+// Blended triangles (order matters where they overlap) from a list of corners.
+void draw_triangles(Context& c, const std::vector<std::array<double, 2>>& corners) {
+  ortho_window(c);
+  c.clearColor(0.2, 0.3, 0.4, 0.5);
+  c.clear(gl::COLOR_BUFFER_BIT);
+  c.enable(gl::BLEND);
+  c.blendFunc(gl::SRC_ALPHA, gl::ONE_MINUS_SRC_ALPHA);
+  c.begin(gl::TRIANGLES);
+  for (std::size_t k = 0; k < corners.size(); ++k) {
+    c.color4(0.1 * static_cast<double>(k % 7), 0.5, 1.0 - 0.1 * static_cast<double>(k % 9), 0.4);
+    c.vertex2(corners[k][0], corners[k][1]);
+  }
+  c.end();
+}
+
+}  // namespace
+
+TEST_CASE("fast threads: a batch is split by its triangles' areas, not their boxes, and a small window stays on one thread") {
+  // Hand count: a sliver (0,0) (160,120) (159,120) covers |160*120 - 120*159|/2
+  // = 60 pixels in a box of 160 x 120; twenty sum to 1200 pixels, below
+  // kSplitFragments (4096) though their boxes sum to 384000. A half-window
+  // triangle (0,0) (160,0) (0,120) covers 9600 pixels, above it.
+  static_assert(Context::kSplitFragments == 4096);
+  std::vector<std::array<double, 2>> slivers, halves;
+  for (int k = 0; k < 20; ++k) {
+    slivers.insert(slivers.end(), {{0, 0}, {160, 120}, {159, 120}});
+    halves.insert(halves.end(), {{0, 0}, {160, 0}, {0, 120}});
+  }
+  for (const auto* corners : {&slivers, &halves}) {
+    const bool big = corners == &halves;
+    Context one(profile_named("geforce256"), 160, 120);
+    draw_triangles(one, *corners);
+    Context two(profile_named("geforce256"), 160, 120);
+    two.set_threads(2);
+    draw_triangles(two, *corners);
+    INFO("halves ", big);
+    CHECK(buffer_hashes(two) == buffer_hashes(one));
+    CHECK(two.split_batches() == (big ? 1u : 0u));
+  }
+  // A 64 x 36 window holds 2304 pixels, below kSplitFragments: however many
+  // triangles a glEnd holds, its draw stays on the calling thread, unless the
+  // threshold is lowered below the window.
+  std::vector<std::array<double, 2>> quads;
+  for (int k = 0; k < 40; ++k) quads.insert(quads.end(), {{0, 0}, {64, 0}, {64, 36}, {0, 0}, {64, 36}, {0, 36}});
+  Context one(profile_named("geforce256"), 64, 36);
+  draw_triangles(one, quads);
+  for (std::int64_t threshold : {Context::kSplitFragments, std::int64_t{1024}}) {
+    Context two(profile_named("geforce256"), 64, 36);
+    two.set_threads(2);
+    two.set_split_fragments(threshold);
+    CHECK(two.split_fragments() == threshold);
+    draw_triangles(two, quads);
+    INFO("threshold ", threshold);
+    CHECK(buffer_hashes(two) == buffer_hashes(one));
+    CHECK(two.split_batches() == (threshold < 64 * 36 ? 1u : 0u));
+  }
+}
+
+TEST_CASE("fast threads: a borrowed pool goes back to the idle pools and is borrowed again") {
+  // 7 threads: a size no other test borrows. Returned pools join the idle pools
+  // (the oldest is evicted beyond four); a borrow takes the most recent of its size.
+  WorkerPool* first = nullptr;
+  {
+    std::shared_ptr<WorkerPool> b = WorkerPool::borrow(7);
+    std::shared_ptr<WorkerPool> a = WorkerPool::borrow(7);
+    REQUIRE(a->threads() == 7);
+    CHECK(b.get() != a.get());  // borrowed twice at once: two pools, one user each
+    first = b.get();
+    std::shared_ptr<WorkerPool> c = WorkerPool::borrow(2);
+    CHECK(c->threads() == 2);
+    std::atomic<int> sum{0};
+    b->run(9, [&](int i) { sum += i; });
+    CHECK(sum.load() == 36);
+  }
+  // Dropped in the order c, a, b: b came back last, so it is borrowed again (no
+  // new pool), and still runs tasks.
+  std::shared_ptr<WorkerPool> again = WorkerPool::borrow(7);
+  CHECK(again.get() == first);
+  std::atomic<int> hits{0};
+  again->run(30, [&](int) { ++hits; });
+  CHECK(hits.load() == 30);
+  // Fewer than one thread: a pool of one participant (no worker threads).
+  CHECK(WorkerPool::borrow(0)->threads() == 1);
 }
 
 TEST_CASE("fast threads: the terrain trace is identical at 1 and 2 threads and its strips are split") {
