@@ -47,10 +47,23 @@ Framebuffer::Framebuffer(const FramebufferFormat& format) : fmt_(format) {
   if (fmt_.stencil_bits < 0 || fmt_.stencil_bits > 8) fail("stencil_bits must be 0..8");
   if (fmt_.depth_bits != 0 && fmt_.depth_bits != 16 && fmt_.depth_bits != 24) fail("depth_bits must be 0, 16 or 24");
   const std::size_t n = static_cast<std::size_t>(fmt_.width) * fmt_.height;
-  if (fmt_.float_color()) values_.assign(4 * n, 0.0);
-  else codes_.assign(4 * n, 0);
-  if (fmt_.stencil_bits > 0) stencil_.assign(n, 0);
-  if (fmt_.depth_bits > 0) depth_.assign(n, 0);
+  // Sized, not filled: the zero fill is owed (fill_zero) until a whole-buffer clear.
+  if (fmt_.float_color()) values_.resize(4 * n);
+  else codes_.resize(4 * n);
+  if (fmt_.stencil_bits > 0) stencil_.resize(n);
+  if (fmt_.depth_bits > 0) depth_.resize(n);
+  unfilled_ = kColor | (fmt_.stencil_bits > 0 ? kStencil : 0u) | (fmt_.depth_bits > 0 ? kDepth : 0u);
+}
+
+void Framebuffer::fill_zero(unsigned buffers) const {
+  buffers &= unfilled_;
+  if (buffers & kColor) {
+    std::fill(codes_.begin(), codes_.end(), std::uint16_t{0});
+    std::fill(values_.begin(), values_.end(), 0.0);
+  }
+  if (buffers & kStencil) std::fill(stencil_.begin(), stencil_.end(), std::uint8_t{0});
+  if (buffers & kDepth) std::fill(depth_.begin(), depth_.end(), std::uint32_t{0});
+  unfilled_ &= ~buffers;
 }
 
 std::uint64_t Framebuffer::next_epoch() {
@@ -64,7 +77,7 @@ std::uint32_t Framebuffer::depth_max() const { return fmt_.depth_bits ? unorm_ma
 
 double Framebuffer::color_value(int x, int y, int c) const {
   const std::size_t i = 4 * index(x, y) + c;
-  return fmt_.float_color() ? values_[i] : unorm_to_double(codes_[i], fmt_.color_bits);
+  return fmt_.float_color() ? values()[i] : unorm_to_double(codes()[i], fmt_.color_bits);
 }
 
 std::array<double, 4> Framebuffer::color(int x, int y) const {
@@ -74,9 +87,9 @@ std::array<double, 4> Framebuffer::color(int x, int y) const {
 void Framebuffer::store_color_value(int x, int y, int c, double v) {
   const std::size_t i = 4 * index(x, y) + c;
   switch (fmt_.color_arith) {
-    case Arithmetic::Fixed: codes_[i] = static_cast<std::uint16_t>(unorm_from_double(v, fmt_.color_bits)); break;
-    case Arithmetic::Float32: values_[i] = static_cast<float>(std::clamp(v, 0.0, 1.0)); break;
-    case Arithmetic::Float64: values_[i] = std::clamp(v, 0.0, 1.0); break;
+    case Arithmetic::Fixed: codes()[i] = static_cast<std::uint16_t>(unorm_from_double(v, fmt_.color_bits)); break;
+    case Arithmetic::Float32: values()[i] = static_cast<float>(std::clamp(v, 0.0, 1.0)); break;
+    case Arithmetic::Float64: values()[i] = std::clamp(v, 0.0, 1.0); break;
   }
 }
 
@@ -89,6 +102,10 @@ Rect intersect(const Rect& a, const Rect& b) {
 void Framebuffer::clear_color(const Rect& r0, const std::array<double, 4>& rgba, const std::array<bool, 4>& mask) {
   const Rect r = intersect(r0, bounds());
   if (r.width == 0 || r.height == 0) return;
+  // A clear of every pixel and channel writes every value: the owed fill is
+  // not needed (any other clear keeps some zeros, so it is done first).
+  if (r.width == width() && r.height == height() && mask[0] && mask[1] && mask[2] && mask[3]) unfilled_ &= ~kColor;
+  else fill_zero(kColor);
   // The clear colour is converted once (store_color_value's rule: a code, or a
   // clamped binary32/64 value) and copied; every pixel gets the same bits.
   const int x0 = r.x, y0 = r.y;
@@ -108,8 +125,16 @@ void Framebuffer::clear_stencil(const Rect& r0, std::uint32_t value, std::uint32
   if (!has_stencil()) return;
   const Rect r = intersect(r0, bounds());
   const std::uint32_t m = writemask & stencil_max();
+  if ((unfilled_ & kStencil) && r.width == width() && r.height == height() && m == stencil_max()) {
+    // Owed zeros under every pixel and every written bit: (0 & ~m) | (value & m)
+    // everywhere (the bits above stencil_bits stay 0, as in a filled buffer).
+    unfilled_ &= ~kStencil;
+    std::fill(stencil_.begin(), stencil_.end(), static_cast<std::uint8_t>(value & m));
+    return;
+  }
+  std::uint8_t* const base = stencil().data();
   for (int y = r.y; y < r.y + r.height; ++y) {
-    std::uint8_t* s = stencil_.data() + index(r.x, y);
+    std::uint8_t* s = base + index(r.x, y);
     for (int x = 0; x < r.width; ++x)
       s[x] = static_cast<std::uint8_t>((s[x] & ~m) | (value & m));  // §4.2.2: writes through StencilMask
   }
@@ -120,7 +145,9 @@ void Framebuffer::clear_depth(const Rect& r0, double depth01) {
   depth_changed();
   const Rect r = intersect(r0, bounds());
   const std::uint32_t code = unorm_from_double(std::clamp(depth01, 0.0, 1.0), fmt_.depth_bits);
-  for (int y = r.y; y < r.y + r.height; ++y) std::fill_n(depth_.data() + index(r.x, y), r.width, code);
+  if (r.width == width() && r.height == height()) unfilled_ &= ~kDepth;  // (as clear_color)
+  std::uint32_t* const base = depth_untracked();
+  for (int y = r.y; y < r.y + r.height; ++y) std::fill_n(base + index(r.x, y), r.width, code);
 }
 
 }  // namespace ffsim

@@ -5,8 +5,10 @@
 #include <array>
 #include <atomic>
 #include <cstdint>
+#include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "pipeline/number/profile.h"
@@ -32,6 +34,31 @@ struct FramebufferError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// An allocator whose value-initialization leaves trivial elements as they are: a
+// vector sized with it is not zero-filled (Framebuffer fills its buffers itself,
+// or leaves that to the first clear that covers them).
+template <class T>
+struct NoFillAllocator : std::allocator<T> {
+  using value_type = T;
+  template <class U>
+  struct rebind {
+    using other = NoFillAllocator<U>;
+  };
+  NoFillAllocator() = default;
+  template <class U>
+  NoFillAllocator(const NoFillAllocator<U>&) noexcept {}
+  template <class U>
+  void construct(U* p) noexcept {
+    ::new (static_cast<void*>(p)) U;  // default-initialization
+  }
+  template <class U, class... A>
+  void construct(U* p, A&&... a) {
+    ::new (static_cast<void*>(p)) U(std::forward<A>(a)...);
+  }
+};
+template <class T>
+using BufferVector = std::vector<T, NoFillAllocator<T>>;
+
 struct Rect {
   int x = 0, y = 0, width = 0, height = 0;  // window coordinates, bottom-left origin
 };
@@ -53,24 +80,25 @@ class Framebuffer {
   std::uint32_t depth_max() const;    // 2^depth_bits - 1
 
   // Raw storage: 4 values (R, G, B, A) per pixel, row-major from the bottom row.
-  // Fixed color uses codes(); float color uses values().
-  std::vector<std::uint16_t>& codes() { return codes_; }
-  const std::vector<std::uint16_t>& codes() const { return codes_; }
-  std::vector<double>& values() { return values_; }
-  const std::vector<double>& values() const { return values_; }
-  std::vector<std::uint8_t>& stencil() { return stencil_; }
-  const std::vector<std::uint8_t>& stencil() const { return stencil_; }
+  // Fixed color uses codes(); float color uses values(). A buffer is zero-filled
+  // when first taken, unless a clear covering all of it came first (filled()).
+  BufferVector<std::uint16_t>& codes() { return filled(kColor, codes_); }
+  const BufferVector<std::uint16_t>& codes() const { return filled(kColor, codes_); }
+  BufferVector<double>& values() { return filled(kColor, values_); }
+  const BufferVector<double>& values() const { return filled(kColor, values_); }
+  BufferVector<std::uint8_t>& stencil() { return filled(kStencil, stencil_); }
+  const BufferVector<std::uint8_t>& stencil() const { return filled(kStencil, stencil_); }
   // The depth codes. Taking them to write marks the buffer changed
   // (depth_epoch); a writer that keeps the reference across draws calls
   // depth_changed() after writing.
-  std::vector<std::uint32_t>& depth() {
+  BufferVector<std::uint32_t>& depth() {
     depth_changed();
-    return depth_;
+    return filled(kDepth, depth_);
   }
-  const std::vector<std::uint32_t>& depth() const { return depth_; }
+  const BufferVector<std::uint32_t>& depth() const { return filled(kDepth, depth_); }
   // The depth codes for a writer that reports each change through depth_changed
   // (the draw path's fragment operations).
-  std::uint32_t* depth_untracked() { return depth_.data(); }
+  std::uint32_t* depth_untracked() { return filled(kDepth, depth_).data(); }
 
   // A number naming the depth buffer's contents (docs/performance.md 17.1): a
   // new one, never used before by any framebuffer, whenever they may change; a
@@ -97,11 +125,25 @@ class Framebuffer {
   Rect bounds() const { return {0, 0, fmt_.width, fmt_.height}; }
 
  private:
+  // Buffers whose zero fill is still owed (bits kColor, kStencil, kDepth): a new
+  // framebuffer reads as zero, but its first whole-buffer glClear (a trace's
+  // first command, typically) writes every value anyway, so the fill is done
+  // only if something else takes the buffer first (docs/performance.md 20.5).
+  static constexpr unsigned kColor = 1, kStencil = 2, kDepth = 4;
+  template <class V>
+  V& filled(unsigned buffer, V& v) const {
+    if (unfilled_ & buffer) fill_zero(buffer);
+    return v;
+  }
+  void fill_zero(unsigned buffers) const;
+
   FramebufferFormat fmt_;
-  std::vector<std::uint16_t> codes_;
-  std::vector<double> values_;
-  std::vector<std::uint8_t> stencil_;
-  std::vector<std::uint32_t> depth_;
+  // (mutable: the owed zero fill happens when a const reader first takes a buffer)
+  mutable BufferVector<std::uint16_t> codes_;
+  mutable BufferVector<double> values_;
+  mutable BufferVector<std::uint8_t> stencil_;
+  mutable BufferVector<std::uint32_t> depth_;
+  mutable unsigned unfilled_ = 0;
   // (atomic: the threads' bands report their changes concurrently; copied as a
   // value; a framebuffer moved from has other contents: a new epoch)
   struct Epoch {

@@ -172,3 +172,61 @@ TEST_CASE("context: matrix modes and stack errors") {
   CHECK(ctx.getError() == gl::INVALID_ENUM);
   CHECK(ctx.matrix_mode() == gl::COLOR);
 }
+
+TEST_CASE("framebuffer: a new buffer reads as zero, whichever clears or readers come first") {
+  // Framebuffer owes its zero fill until a clear covers a whole buffer (every
+  // pixel; every channel, every stencil bit). Random sequences of clears (whole
+  // or partial rectangles, masks) and reads on a fresh framebuffer must leave
+  // what the same sequence leaves on one filled at once (`model`: every buffer
+  // taken, so filled, before anything else). Before each, a freed block of the
+  // same sizes full of 0xA5 makes it likely that owed memory is not zero already.
+  std::mt19937 rng(20261202);
+  auto pick = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+  int whole = 0, partial = 0;
+  for (int round = 0; round < 400; ++round) {
+    FramebufferFormat f;
+    f.width = pick(1, 40);
+    f.height = pick(1, 20);
+    f.color_arith = std::array{Arithmetic::Fixed, Arithmetic::Fixed, Arithmetic::Float32, Arithmetic::Float64}[pick(0, 3)];
+    f.color_bits = pick(1, 12);
+    f.stencil_bits = pick(0, 8);
+    f.depth_bits = std::array{0, 16, 24}[pick(0, 2)];
+    {
+      Framebuffer dirty(f);
+      std::fill(dirty.codes().begin(), dirty.codes().end(), std::uint16_t{0xA5A5});
+      std::fill(dirty.values().begin(), dirty.values().end(), 0.625);
+      std::fill(dirty.stencil().begin(), dirty.stencil().end(), std::uint8_t{0xA5});
+      std::fill(dirty.depth().begin(), dirty.depth().end(), 0xA5A5A5u);
+    }
+    Framebuffer fb(f);
+    Framebuffer model(f);
+    (void)model.codes(), (void)model.values(), (void)model.stencil(), (void)model.depth();
+    CAPTURE(round);
+    const int steps = pick(0, 3);
+    for (int s = 0; s < steps; ++s) {
+      const bool full = pick(0, 1) == 1;
+      const Rect r = full ? Rect{pick(-3, 0), pick(-3, 0), f.width + 3, f.height + 3}
+                          : Rect{pick(-5, f.width), pick(-5, f.height), pick(0, f.width), pick(0, f.height)};
+      std::array<bool, 4> mask{true, true, true, true};
+      if (pick(0, 2) == 0) mask[static_cast<std::size_t>(pick(0, 3))] = false;
+      const std::array<double, 4> rgba{pick(0, 8) / 8.0, pick(0, 8) / 8.0, 0.3, 1.0};
+      const auto smask = pick(0, 1) == 1 ? 0xFFu : static_cast<std::uint32_t>(pick(0, 255));
+      const auto svalue = static_cast<std::uint32_t>(pick(0, 255));
+      const double depth = pick(0, 4) / 4.0;
+      const int which = pick(0, 4);  // 0-2: one clear; 3: all three; 4: a read of every buffer
+      for (Framebuffer* b : {&fb, &model}) {
+        if (which == 0 || which == 3) b->clear_color(r, rgba, mask);
+        if (which == 1 || which == 3) b->clear_stencil(r, svalue, smask);
+        if (which == 2 || which == 3) b->clear_depth(r, depth);
+        if (which == 4) CHECK(b->color_value(0, 0, 0) >= 0);
+      }
+      (full && mask == std::array<bool, 4>{true, true, true, true} ? whole : partial)++;
+    }
+    CHECK(fb.codes() == model.codes());
+    CHECK(fb.values() == model.values());
+    CHECK(fb.stencil() == model.stencil());
+    CHECK(fb.depth() == model.depth());
+  }
+  CHECK(whole > 100);
+  CHECK(partial > 100);
+}

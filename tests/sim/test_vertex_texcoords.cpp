@@ -90,7 +90,7 @@ TEST_CASE("texture matrix: drawn triangles follow matrix changes between glBegin
   const double scaled[16] = {3, 0, 0, 0, 0, 2, 0, 0, 0, 0, 1, 0, 0.125, 0.25, 0, 1};
   const double* sequence[] = {identity, scaled, identity, scaled};
   int differ_from_first = 0;
-  std::vector<std::uint16_t> first;
+  BufferVector<std::uint16_t> first;
   for (const double* m : sequence) {
     for (Context* c : {&fast, &ref}) {
       load_texture_matrix(*c, 0, m);
