@@ -468,6 +468,8 @@ class Context {
   // pool. Batches so split, and the triangles they held.
   std::uint64_t split_batches() const { return split_batches_; }
   std::uint64_t split_triangles() const { return split_triangles_; }
+  // glEnds whose batch triangles came from their geometry memo entry (BatchMemo).
+  std::uint64_t batch_memo_uses() const { return batch_memo_uses_; }
   // Pixel rectangles (CopyPixels) whose rows went through the fragment
   // operations in bands on the pool (docs/performance.md 19.6).
   std::uint64_t split_pixel_rects() const { return split_pixel_rects_; }
@@ -732,7 +734,7 @@ class Context {
   GeometryMemo geometry_memo_;
   std::vector<glm::dvec4> object_scratch_;  // a glEnd's object positions, for the memo
   std::vector<TriangleRef> sequence_scratch_;  // a glEnd's triangles (one thread)
-  std::uint64_t fast_runs_ = 0, split_batches_ = 0, split_triangles_ = 0, shared_vertex_draws_ = 0;
+  std::uint64_t fast_runs_ = 0, split_batches_ = 0, split_triangles_ = 0, shared_vertex_draws_ = 0, batch_memo_uses_ = 0;
   std::uint64_t split_pixel_rects_ = 0;
   // Scratch of the span path, reused from run to run (sim/draw_span.cpp).
   // (alignas(64): the bands' scratch never share a cache line, so two threads'

@@ -97,6 +97,7 @@ void Context::end() {
   const bool memo = shared && geometry_memo_on_;
   GeometryKey gkey;
   const GeometryEntry* geo = nullptr;
+  const GeometryEntry* entry = nullptr;  // this glEnd's memo entry, found or made
   if (memo) {
     gkey = {begin_mode_, modelview_.top(), projection_.top(), ds.hw, ds.hh, depth_near_, depth_far_,
             profile_.subpixel_bits, ds.has_depth ? fb_.format().depth_bits : 0};
@@ -128,6 +129,7 @@ void Context::end() {
         window_attributes(v[i], geo->iw[i], ds, w[i]);
       }
       geometry = geo->serial;
+      entry = geo;
     } else if (!memo) {
       for (std::size_t i = 0; i < n; ++i) window_vertex(v[i], ds, w[i]);
     } else {  // window_vertex's two halves, keeping 1/w_c and the position half in the memo
@@ -143,6 +145,7 @@ void Context::end() {
         if (ds.has_depth) e.depth[i] = w[i].depth;
       }
       geometry = e.serial;
+      entry = &e;
     }
   }
   // A polygon's fan over the shared window vertices: corner j is vertex at(j).
@@ -172,8 +175,25 @@ void Context::end() {
     if (ds.bands) batch_polygon(poly, provoking, ds);
     else this->draw_polygon(poly, provoking, ds);
   };
+  // Threads, shared vertices with a memo entry: the triangles batch_triangle
+  // made for this entry in this window before are appended as they were.
+  const std::int64_t area_before = batch_area_;
+  BatchMemo* batch_memo = shared && ds.bands && entry ? &entry->batch : nullptr;
+  const bool from_memo = batch_memo && batch_memo->valid && batch_memo->cx0 == ds.cx0 && batch_memo->cy0 == ds.cy0 &&
+                         batch_memo->cx1 == ds.cx1 && batch_memo->cy1 == ds.cy1;
+  if (from_memo) {
+    ++batch_memo_uses_;
+    const auto base = static_cast<std::uint32_t>(shared_base);
+    for (const BatchMemo::Triangle& t : batch_memo->triangles)
+      batch_triangles_.push_back({{base + t.v[0], base + t.v[1], base + t.v[2]}, t.r0, t.r1});
+    if (!batch_memo->triangles.empty()) {
+      batch_r0_ = batch_before == 0 ? batch_memo->r0 : std::min(batch_r0_, batch_memo->r0);
+      batch_r1_ = batch_before == 0 ? batch_memo->r1 : std::max(batch_r1_, batch_memo->r1);
+    }
+    batch_area_ += batch_memo->area;
+  }
   // Provoking vertex for flat shading (GL121 Table 2.9, 0-based here).
-  switch (begin_mode_) {
+  switch (from_memo ? GLenum{0} : begin_mode_) {
     case gl::TRIANGLES:
       for (std::size_t i = 0; i + 2 < n; i += 3) draw_polygon({i, i + 1, i + 2}, 2);
       break;
@@ -202,6 +222,20 @@ void Context::end() {
       }
       break;
     default: break;
+  }
+  if (batch_memo && !from_memo) {  // (the glEnd's triangles are added whole: none flushed since batch_before)
+    BatchMemo& m = *batch_memo;
+    m.valid = true;
+    m.cx0 = ds.cx0, m.cy0 = ds.cy0, m.cx1 = ds.cx1, m.cy1 = ds.cy1;
+    m.triangles.clear();
+    const auto base = static_cast<std::uint32_t>(shared_base);
+    for (std::size_t i = batch_before; i < batch_triangles_.size(); ++i) {
+      const BatchTriangle& t = batch_triangles_[i];
+      m.triangles.push_back({{t.v[0] - base, t.v[1] - base, t.v[2] - base}, t.r0, t.r1});
+      m.r0 = i == batch_before ? t.r0 : std::min(m.r0, t.r0);
+      m.r1 = i == batch_before ? t.r1 : std::max(m.r1, t.r1);
+    }
+    m.area = batch_area_ - area_before;
   }
   if (shared && !ds.bands) draw_sequence(ds, sequence_scratch_, shared_span, geometry);  // through the raster cache
   if (shared && ds.bands && geometry != 0)  // (no flush since batch_before: a shared glEnd's triangles are added whole)

@@ -38,6 +38,25 @@ struct GeometryKey {
   int subpixel_bits = 0, depth_bits = 0;  // depth_bits 0: no depth buffer (no depth codes)
 };
 
+// Threads (Context::end into a batch): the glEnd's triangles as
+// Context::batch_triangle makes them for one window, [cx0, cx1) x [cy0, cy1)
+// relative to the viewport corner: vertex indices relative to the glEnd's first,
+// the rows each may cover, and the batch's sums. A pure function of the entry
+// (its positions, the primitive key.mode, the sub-pixel bits) and the window, so
+// a later glEnd of the entry in the same window appends them as they are
+// (docs/performance.md 20.6); another window makes them again.
+struct BatchMemo {
+  struct Triangle {
+    std::array<std::uint32_t, 3> v;
+    int r0, r1;
+  };
+  bool valid = false;
+  int cx0 = 0, cy0 = 0, cx1 = 0, cy1 = 0;
+  std::vector<Triangle> triangles;
+  int r0 = 0, r1 = 0;     // the rows of all of them (when there are any)
+  std::int64_t area = 0;  // the sum batch_triangle adds to the batch's area
+};
+
 struct GeometryEntry {
   std::uint64_t serial = 0;
   GeometryKey key;
@@ -45,6 +64,7 @@ struct GeometryEntry {
   std::vector<double> iw;          // 1 / w_c
   std::vector<SnappedVertex> p;
   std::vector<std::uint32_t> depth;  // empty without a depth buffer
+  mutable BatchMemo batch;           // (derived from the above: made when first needed)
 };
 
 class GeometryMemo {

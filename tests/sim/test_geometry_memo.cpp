@@ -171,7 +171,7 @@ TEST_CASE("geometry memo: a framebuffer without depth keeps no depth codes, and 
 }
 
 TEST_CASE("geometry memo: random multipass scenes with moving transformations == memo off == per-fragment path") {
-  std::uint64_t hits = 0, misses = 0;
+  std::uint64_t hits = 0, misses = 0, batch_memo = 0;
   for (const char* profile : {"geforce256", "rgba12"})
     for (int threads : {1, 2})
 #ifdef FFSIM_SANITIZE
@@ -206,6 +206,11 @@ TEST_CASE("geometry memo: random multipass scenes with moving transformations ==
             if (change == 2) c->viewport(0, 0, kW, kH);
             if (change == 3) c->depthRange(r.d(0, 0.3), r.d(0.7, 1));
             if (change == 4) grid[static_cast<std::size_t>(r.i(0, static_cast<int>(grid.size()) - 1))][0] += 1e-12;
+            // The viewport's corner alone: the memo's key (its size) is unchanged,
+            // but the window relative to the corner moves, and with it the
+            // triangles a batch keeps (the batch memo holds for one window).
+            if (change == 5 || change == 6) c->viewport(r.i(-40, 40), r.i(-30, 30), kW, kH);
+            if (change == 7) c->viewport(0, 0, kW, kH);
             const GLenum mode = r.b(80) ? gl::TRIANGLE_STRIP : gl::QUAD_STRIP;
             for (int j = 0; j < rows; ++j) {
               c->begin(mode);
@@ -226,10 +231,14 @@ TEST_CASE("geometry memo: random multipass scenes with moving transformations ==
         CHECK(on.fragments_written() == off.fragments_written());
         hits += on.geometry_memo().hits();
         misses += on.geometry_memo().misses();
+        batch_memo += on.batch_memo_uses();
+        if (threads == 1) CHECK(on.batch_memo_uses() == 0);  // (no batches on one thread)
+        CHECK(off.batch_memo_uses() == 0);
       }
-  MESSAGE("memo hits " << hits << ", misses " << misses);
+  MESSAGE("memo hits " << hits << ", misses " << misses << ", batch memo uses " << batch_memo);
   CHECK(hits > 0);
   CHECK(misses > 0);
+  CHECK(batch_memo > 0);
 }
 
 TEST_CASE("geometry memo: texture units past the profile's hold (0, 0, 0, 1)") {
