@@ -90,4 +90,7 @@ TEST_CASE("bench --perf: bad arguments are one-line usage errors") {
   const std::string where = bad.string() + ":3:7: ";
   CHECK(dup.err.rfind("ffsim bench --perf: " + where + "parameter `w` is already declared at " + bad.string() + ":2:7", 0) == 0);
   CHECK(dup.err.find(where, dup.err.find(where) + 1) == std::string::npos);
+  std::error_code ec;
+  fs::remove(bad, ec);
+  fs::remove_all(fs::temp_directory_path() / "ffsim-perf-missing", ec);
 }

@@ -16,6 +16,14 @@ namespace fs = std::filesystem;
 namespace {
 fs::path temp_dir() {
   const fs::path d = fs::temp_directory_path() / ("ffsim-test-" + std::to_string(::getpid()));
+  // Removed when the test process ends (every test of this file shares it).
+  static const struct RemoveAtExit {
+    fs::path dir;
+    ~RemoveAtExit() {
+      std::error_code ec;
+      fs::remove_all(dir, ec);
+    }
+  } remove_at_exit{d};
   fs::create_directories(d);
   return d;
 }

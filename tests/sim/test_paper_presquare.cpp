@@ -74,6 +74,8 @@ Image run_with_texture(const std::string& name, std::string text, const Image& t
   ro.keep_images = true;
   std::ostringstream out;
   const RunResult r = run_program(p, ro, out);
+  std::error_code ec;
+  fs::remove_all(dir, ec);  // (the trace has read tex.png; nothing else is kept)
   REQUIRE(r.ok);
   CHECK(r.gl_errors.empty());
   return r.images.at("final-color");
