@@ -104,7 +104,7 @@ void Framebuffer::clear_color(const Rect& r0, const std::array<double, 4>& rgba,
   if (r.width == 0 || r.height == 0) return;
   // A clear of every pixel and channel writes every value: the owed fill is
   // not needed (any other clear keeps some zeros, so it is done first).
-  if (r.width == width() && r.height == height() && mask[0] && mask[1] && mask[2] && mask[3]) unfilled_ &= ~kColor;
+  if (covers_all(r) && mask[0] && mask[1] && mask[2] && mask[3]) unfilled_ &= ~kColor;
   else fill_zero(kColor);
   // The clear colour is converted once (store_color_value's rule: a code, or a
   // clamped binary32/64 value) and copied; every pixel gets the same bits.
@@ -125,7 +125,7 @@ void Framebuffer::clear_stencil(const Rect& r0, std::uint32_t value, std::uint32
   if (!has_stencil()) return;
   const Rect r = intersect(r0, bounds());
   const std::uint32_t m = writemask & stencil_max();
-  if ((unfilled_ & kStencil) && r.width == width() && r.height == height() && m == stencil_max()) {
+  if ((unfilled_ & kStencil) && covers_all(r) && m == stencil_max()) {
     // Owed zeros under every pixel and every written bit: (0 & ~m) | (value & m)
     // everywhere (the bits above stencil_bits stay 0, as in a filled buffer).
     unfilled_ &= ~kStencil;
@@ -145,7 +145,7 @@ void Framebuffer::clear_depth(const Rect& r0, double depth01) {
   depth_changed();
   const Rect r = intersect(r0, bounds());
   const std::uint32_t code = unorm_from_double(std::clamp(depth01, 0.0, 1.0), fmt_.depth_bits);
-  if (r.width == width() && r.height == height()) unfilled_ &= ~kDepth;  // (as clear_color)
+  if (covers_all(r)) unfilled_ &= ~kDepth;  // (as clear_color)
   std::uint32_t* const base = depth_untracked();
   for (int y = r.y; y < r.y + r.height; ++y) std::fill_n(base + index(r.x, y), r.width, code);
 }

@@ -5,13 +5,12 @@
 #include <array>
 #include <atomic>
 #include <cstdint>
-#include <memory>
 #include <stdexcept>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "pipeline/number/profile.h"
+#include "sim/uninitialized_allocator.h"
 
 namespace ffsim {
 
@@ -34,30 +33,10 @@ struct FramebufferError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// An allocator whose value-initialization leaves trivial elements as they are: a
-// vector sized with it is not zero-filled (Framebuffer fills its buffers itself,
-// or leaves that to the first clear that covers them).
+// The buffers' storage: sized without a fill (Framebuffer fills its buffers
+// itself, or leaves that to the first clear that covers them).
 template <class T>
-struct NoFillAllocator : std::allocator<T> {
-  using value_type = T;
-  template <class U>
-  struct rebind {
-    using other = NoFillAllocator<U>;
-  };
-  NoFillAllocator() = default;
-  template <class U>
-  NoFillAllocator(const NoFillAllocator<U>&) noexcept {}
-  template <class U>
-  void construct(U* p) noexcept {
-    ::new (static_cast<void*>(p)) U;  // default-initialization
-  }
-  template <class U, class... A>
-  void construct(U* p, A&&... a) {
-    ::new (static_cast<void*>(p)) U(std::forward<A>(a)...);
-  }
-};
-template <class T>
-using BufferVector = std::vector<T, NoFillAllocator<T>>;
+using BufferVector = std::vector<T, UninitializedAllocator<T>>;
 
 struct Rect {
   int x = 0, y = 0, width = 0, height = 0;  // window coordinates, bottom-left origin
@@ -136,6 +115,8 @@ class Framebuffer {
     return v;
   }
   void fill_zero(unsigned buffers) const;
+  // Whether a rectangle already clipped to the bounds is all of them.
+  bool covers_all(const Rect& r) const { return r.width == fmt_.width && r.height == fmt_.height; }
 
   FramebufferFormat fmt_;
   // (mutable: the owed zero fill happens when a const reader first takes a buffer)

@@ -23,32 +23,13 @@
 
 #include "pipeline/gl/enums.h"
 #include "pipeline/raster/triangle.h"
+#include "sim/uninitialized_allocator.h"
 
 namespace ffsim {
 
-// An allocator whose value-less construct leaves a trivial element as it is:
-// resize() then allocates without writing, for arrays the span path fills
-// whole right away (a recorded group's depth codes, pixel list and texture
-// coordinates, written in place instead of copied from the scratch arrays).
-template <class T>
-struct UninitializedAllocator : std::allocator<T> {
-  template <class U>
-  struct rebind {
-    using other = UninitializedAllocator<U>;
-  };
-  UninitializedAllocator() = default;
-  template <class U>
-  UninitializedAllocator(const UninitializedAllocator<U>&) noexcept {}
-  template <class U>
-  void construct(U* p) noexcept {
-    static_assert(std::is_trivially_default_constructible_v<U>);
-    ::new (static_cast<void*>(p)) U;
-  }
-  template <class U, class... Args>
-  void construct(U* p, Args&&... args) {
-    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-  }
-};
+// Arrays the span path fills whole right away (a recorded group's depth codes,
+// pixel list and texture coordinates, written in place instead of copied from
+// the scratch arrays): sized without a write.
 template <class T>
 using FilledVector = std::vector<T, UninitializedAllocator<T>>;
 

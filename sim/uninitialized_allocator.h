@@ -1,0 +1,35 @@
+// An allocator whose value-less construct leaves a trivial element as it is:
+// resize() then allocates without writing. For arrays whose owner writes every
+// element before reading it: the raster cache's recordings (filled whole right
+// away by the span path) and the framebuffer's buffers (zero-filled when first
+// taken, or wholly written by a clear; sim/framebuffer.h).
+#pragma once
+#include <memory>
+#include <new>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace ffsim {
+
+template <class T>
+struct UninitializedAllocator : std::allocator<T> {
+  template <class U>
+  struct rebind {
+    using other = UninitializedAllocator<U>;
+  };
+  UninitializedAllocator() = default;
+  template <class U>
+  UninitializedAllocator(const UninitializedAllocator<U>&) noexcept {}
+  template <class U>
+  void construct(U* p) noexcept {
+    static_assert(std::is_trivially_default_constructible_v<U>);
+    ::new (static_cast<void*>(p)) U;  // default-initialization: no write
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
+}  // namespace ffsim
