@@ -2,7 +2,7 @@
 # Installs the Debian 12 packages ffsim builds with, skipping those already present.
 # Non-interactive; uses sudo only when not root.
 set -euo pipefail
-pkgs=(cmake g++ make pkg-config libglm-dev libopenimageio-dev libopenexr-dev doctest-dev)
+pkgs=(cmake g++ make pkg-config libglm-dev libopenimageio-dev libopenexr-dev doctest-dev valgrind)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -41,6 +41,7 @@
 #include "sim/gl_error.h"
 #include "sim/probe.h"
 #include "sim/raster_cache.h"
+#include "sim/uninitialized_allocator.h"
 #include "sim/upload_cache.h"
 
 namespace ffsim {
@@ -85,6 +86,9 @@ struct TextureUnitBinding {
 inline constexpr int kMaxTextureUnits = 4;
 
 struct WindowVertex;       // sim/draw_span.h
+// The draw path's window vertices: resized without a fill (every member is
+// written before it is read; sim/draw_span.h).
+using WindowVertices = std::vector<WindowVertex, UninitializedAllocator<WindowVertex>>;
 class WorkerPool;          // sim/worker_pool.h
 // Runs for the span path: `count` fragments in `runs` runs of length[0],
 // length[1], ...; run r's weights are first[r] + i·dwdx at its i-th fragment
@@ -632,7 +636,7 @@ class Context {
   // vertices to `out` (a fan) and returns true, or leaves `out` alone and returns
   // false when nothing of it is left.
   bool prepare_polygon(std::vector<ClipVertex>& poly, std::size_t provoking, const DrawSetup& ds,
-                       std::vector<WindowVertex>& out);
+                       WindowVertices& out);
   // One vertex's window form (§2.10.1 viewport, snapped; depth and colour codes;
   // texture coordinates over w).
   void window_vertex(const ClipVertex& c, const DrawSetup& ds, WindowVertex& w) const;
@@ -740,19 +744,21 @@ class Context {
   // (alignas(64): the bands' scratch never share a cache line, so two threads'
   // writes to their own members do not take the line from each other; the same
   // for band_spans_, band_counts_ and the bands' RasterRecording)
+  // (The arrays the span path writes whole before reading them are FilledVector:
+  // sized per group without a fill.)
   struct alignas(64) SpanScratch {
-    std::vector<std::uint16_t> primary, secondary;
-    std::array<std::vector<std::uint16_t>, kMaxTextureUnits> texels;
-    std::vector<float> s, t;  // s/q, t/q rounded to binary32 (texture_coordinates)
-    std::vector<std::uint32_t> lane;
+    FilledVector<std::uint16_t> primary, secondary;
+    std::array<FilledVector<std::uint16_t>, kMaxTextureUnits> texels;
+    FilledVector<float> s, t;  // s/q, t/q rounded to binary32 (texture_coordinates)
+    FilledVector<std::uint32_t> lane;
     // A group of runs (sim/draw.cpp), from one triangle or several: first
     // weights, rows, first pixels, lengths (one per run), and the shaded codes and
     // depths, all runs one after the other; the triangles they come from.
     std::vector<std::array<std::int64_t, 3>> weight;
     std::vector<int> run_y, run_x0, run_length;
-    std::vector<std::uint16_t> codes;
-    std::vector<std::uint32_t> depth;
-    std::vector<std::uint32_t> pixel;  // the group's fragments' pixel indices (y·width + x)
+    FilledVector<std::uint16_t> codes;
+    FilledVector<std::uint32_t> depth;
+    FilledVector<std::uint32_t> pixel;  // the group's fragments' pixel indices (y·width + x)
     std::vector<GroupTriangle> triangles;
     int group_fragments = 0;
     unsigned coords_reuse = 0;  // coords_reuse_mask of every triangle of the group
@@ -784,7 +790,7 @@ class Context {
   // from polygon to polygon: no allocation per triangle. prepare_polygon clips in
   // place (clip_polygon hands the same buffer back when nothing is clipped).
   std::vector<ClipVertex> polygon_scratch_;
-  std::vector<WindowVertex> window_scratch_;
+  WindowVertices window_scratch_;
   // window_vertex's last primary and secondary colour conversions (a run of
   // vertices of one colour converts it once).
   struct ColorMemo {
@@ -819,7 +825,7 @@ class Context {
     std::array<std::uint32_t, 3> v;
     int r0, r1;
   };
-  std::vector<WindowVertex> batch_vertices_;
+  WindowVertices batch_vertices_;
   std::vector<BatchTriangle> batch_triangles_;
   // The batch's glEnds as (geometry memo serial, triangles it added) pairs, in
   // order, for the raster key; batch_unkeyed_: some triangle of the batch came

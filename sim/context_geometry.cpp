@@ -117,7 +117,7 @@ void Context::end() {
   sequence_scratch_.clear();
   if (shared) {
     ++shared_vertex_draws_;
-    std::vector<WindowVertex>& wv = ds.bands ? batch_vertices_ : window_scratch_;
+    WindowVertices& wv = ds.bands ? batch_vertices_ : window_scratch_;
     if (!ds.bands) wv.clear();
     shared_base = wv.size();
     wv.resize(shared_base + n);
@@ -125,7 +125,7 @@ void Context::end() {
     if (geo) {
       for (std::size_t i = 0; i < n; ++i) {
         w[i].p = geo->p[i];
-        if (ds.has_depth) w[i].depth = geo->depth[i];
+        w[i].depth = ds.has_depth ? geo->depth[i] : 0;
         window_attributes(v[i], geo->iw[i], ds, w[i]);
       }
       geometry = geo->serial;
@@ -154,7 +154,7 @@ void Context::end() {
       if (ds.bands) {
         batch_triangle(shared_base + at(0), shared_base + at(j), shared_base + at(j + 1), ds);
       } else {  // drawn after the glEnd's last polygon (draw_sequence)
-        const std::vector<WindowVertex>& wv = window_scratch_;
+        const WindowVertices& wv = window_scratch_;
         sequence_scratch_.push_back({&wv[at(0)], &wv[at(j)], &wv[at(j + 1)]});
       }
     }

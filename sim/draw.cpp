@@ -225,7 +225,7 @@ Context::DrawSetup Context::draw_setup(const ShadingState& st, const ShadingPlan
 }
 
 bool Context::prepare_polygon(std::vector<ClipVertex>& poly, std::size_t provoking, const DrawSetup& ds,
-                              std::vector<WindowVertex>& out) {
+                              WindowVertices& out) {
   if (ds.flat) {  // §2.13.7: every vertex takes the provoking vertex's colours
     for (ClipVertex& v : poly) {
       v.color = poly[provoking].color;
@@ -255,7 +255,7 @@ void Context::window_position(const glm::dvec4& clip, double iw, const DrawSetup
   w.p.x = snap_coordinate((clip.x * iw + 1) * ds.hw, S);
   w.p.y = snap_coordinate((clip.y * iw + 1) * ds.hh, S);
   const double zw = depth_near_ + (depth_far_ - depth_near_) * ((clip.z * iw + 1) / 2);
-  if (ds.has_depth) w.depth = unorm_from_double(zw, fb_.format().depth_bits);
+  w.depth = ds.has_depth ? unorm_from_double(zw, fb_.format().depth_bits) : 0;
 }
 
 void Context::window_attributes(const ClipVertex& c, double iw, const DrawSetup& ds, WindowVertex& w) const {
@@ -689,7 +689,7 @@ void Context::raster_triangle(const DrawSetup& ds, const std::array<const Window
 }
 
 void Context::draw_polygon(std::vector<ClipVertex>& poly, std::size_t provoking, const DrawSetup& ds) {
-  std::vector<WindowVertex>& wv = window_scratch_;
+  WindowVertices& wv = window_scratch_;
   wv.clear();
   if (!prepare_polygon(poly, provoking, ds, wv)) return;
   FragmentSpan span;  // reused from run to run

@@ -34,7 +34,7 @@ namespace {
 // Interpolated colour codes of the runs, 4 per fragment (flat: the provoking
 // vertex's, which draw_polygon copied to every vertex).
 void interpolate_colors(const std::array<const WindowVertex*, 3>& tv, bool secondary, const TriangleCoverage& cov,
-                        const FastRuns& runs, bool flat, std::vector<std::uint32_t>& lane, std::uint16_t* out) {
+                        const FastRuns& runs, bool flat, std::uint32_t* lane, std::uint16_t* out) {
   auto code = [&](const WindowVertex* v, int c) { return secondary ? v->secondary_code[c] : v->color_code[c]; };
   auto constant = [&](int c) { return flat || (code(tv[0], c) == code(tv[1], c) && code(tv[1], c) == code(tv[2], c)); };
   const int n = runs.count;
@@ -53,8 +53,8 @@ void interpolate_colors(const std::array<const WindowVertex*, 3>& tv, bool secon
     }
     // The DDA restarts at every run (one step division per triangle).
     interpolate_code_runs(runs.first, runs.length, runs.runs, cov.dwdx, cov.area, code(tv[0], c), code(tv[1], c),
-                          code(tv[2], c), lane.data());
-    for (int f = 0; f < n; ++f) out[4 * f + c] = static_cast<std::uint16_t>(lane[static_cast<std::size_t>(f)]);
+                          code(tv[2], c), lane);
+    for (int f = 0; f < n; ++f) out[4 * f + c] = static_cast<std::uint16_t>(lane[f]);
   }
 }
 
@@ -500,7 +500,7 @@ void Context::shade_runs_fast(const ShadingState& st, const ShadingPlan& plan, c
   };
   auto colors = [&](bool secondary, std::uint16_t* to) {
     each([&](const GroupTriangle& g, const FastRuns& r, std::size_t off) {
-      interpolate_colors(g.tv, secondary, g.cov, r, flat, sc.lane, to + 4 * off);
+      interpolate_colors(g.tv, secondary, g.cov, r, flat, sc.lane.data(), to + 4 * off);
     });
   };
   // One unit whose REPLACE of an RGBA texture at the colour width is the whole

@@ -9,12 +9,15 @@
 
 namespace ffsim {
 
+// Context::window_position and window_attributes write every member (depth 0
+// without a depth buffer), so the draw path's vertex arrays (WindowVertices)
+// grow without a fill; `WindowVertex{}` is all zeros.
 struct WindowVertex {
   SnappedVertex p;
-  std::array<std::uint32_t, 4> color_code{}, secondary_code{};
-  std::array<double, 4> color{}, secondary{};
-  std::uint32_t depth = 0;
-  std::array<std::array<double, 3>, kMaxTextureUnits> tcw{};  // s/w, t/w, q/w
+  std::array<std::uint32_t, 4> color_code, secondary_code;
+  std::array<double, 4> color, secondary;
+  std::uint32_t depth;
+  std::array<std::array<double, 3>, kMaxTextureUnits> tcw;  // s/w, t/w, q/w
 };
 
 // The span path's sharing of texture coordinates (sim/draw_span.cpp): bit u is

@@ -1,8 +1,10 @@
 // An allocator whose value-less construct leaves a trivial element as it is:
 // resize() then allocates without writing. For arrays whose owner writes every
 // element before reading it: the raster cache's recordings (filled whole right
-// away by the span path) and the framebuffer's buffers (zero-filled when first
-// taken, or wholly written by a clear; sim/framebuffer.h).
+// away by the span path), the framebuffer's buffers (zero-filled when first
+// taken, or wholly written by a clear; sim/framebuffer.h) and the draw path's
+// window vertices (every member written by Context::window_position and
+// window_attributes; sim/draw_span.h).
 #pragma once
 #include <memory>
 #include <new>
@@ -23,8 +25,8 @@ struct UninitializedAllocator : std::allocator<T> {
   UninitializedAllocator(const UninitializedAllocator<U>&) noexcept {}
   template <class U>
   void construct(U* p) noexcept {
-    static_assert(std::is_trivially_default_constructible_v<U>);
-    ::new (static_cast<void*>(p)) U;  // default-initialization: no write
+    static_assert(std::is_trivially_copyable_v<U> && std::is_nothrow_default_constructible_v<U>);
+    ::new (static_cast<void*>(p)) U;  // default-initialization: no write (but a member's own initializer)
   }
   template <class U, class... Args>
   void construct(U* p, Args&&... args) {
