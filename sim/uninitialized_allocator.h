@@ -2,9 +2,11 @@
 // resize() then allocates without writing. For arrays whose owner writes every
 // element before reading it: the raster cache's recordings (filled whole right
 // away by the span path), the framebuffer's buffers (zero-filled when first
-// taken, or wholly written by a clear; sim/framebuffer.h) and the draw path's
+// taken, or wholly written by a clear; sim/framebuffer.h), the draw path's
 // window vertices (every member written by Context::window_position and
-// window_attributes; sim/draw_span.h).
+// window_attributes; sim/draw_span.h) and the span path's per-group scratch
+// (sim/context.h SpanScratch). The memcheck CTests (tests/CMakeLists.txt) check
+// that nothing is read before it is written.
 #pragma once
 #include <memory>
 #include <new>
