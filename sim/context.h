@@ -41,7 +41,6 @@
 #include "sim/gl_error.h"
 #include "sim/probe.h"
 #include "sim/raster_cache.h"
-#include "sim/uninitialized_allocator.h"
 #include "sim/upload_cache.h"
 
 namespace ffsim {
@@ -88,7 +87,7 @@ inline constexpr int kMaxTextureUnits = 4;
 struct WindowVertex;       // sim/draw_span.h
 // The draw path's window vertices: resized without a fill (every member is
 // written before it is read; sim/draw_span.h).
-using WindowVertices = std::vector<WindowVertex, UninitializedAllocator<WindowVertex>>;
+using WindowVertices = FilledVector<WindowVertex>;  // (sim/raster_cache.h)
 class WorkerPool;          // sim/worker_pool.h
 // Runs for the span path: `count` fragments in `runs` runs of length[0],
 // length[1], ...; run r's weights are first[r] + i·dwdx at its i-th fragment
