@@ -137,6 +137,7 @@ FragmentPlan build_fragment_plan(const FragmentPlanKey& key) {
     p.write_color |= key.channel[c] != ChannelOp::Keep;
     p.read_dst_color |= reads_dst(key.channel[c], key.blend_src, c);
   }
+  p.lanes8 = blend_lanes8(key);
   return p;
 }
 
@@ -549,9 +550,21 @@ void color_stage_fixed(const FragmentPlan& plan, const FragmentConstants& k, con
           default: break;  // (other masks: color_interleaved)
         }
       }
+      if constexpr (kM == 255) {  // gathered four pixels at a time (blend_lanes8.h)
+        if (plan.lanes8.usable)
+          return blend_lanes8_list(plan.lanes8, k.blend_color_code.data(), in, fb, pixel.pixel, n, alive);
+      }
     }
     with_interleaved(op, [&](auto o) { color_interleaved<o.value>(m, in, fb, pixel, n, wmask, alive); });
     return;
+  }
+  if constexpr (kM == 255) {  // 8-bit colour: four pixels' channels at once (blend_lanes8.h)
+    if (plan.lanes8.usable) {
+      const std::uint32_t* kc = k.blend_color_code.data();
+      if constexpr (std::is_same_v<Px, RowPixels>) blend_lanes8_row(plan.lanes8, kc, in, fb, pixel.first, n, alive);
+      else blend_lanes8_list(plan.lanes8, kc, in, fb, pixel.pixel, n, alive);
+      return;
+    }
   }
   FixedKernel<kM> kern;
   kern.M = k.color_max;

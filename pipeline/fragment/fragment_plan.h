@@ -22,6 +22,7 @@
 
 #include "pipeline/fragment/alpha_test.h"
 #include "pipeline/fragment/blend.h"
+#include "pipeline/fragment/blend_lanes8.h"
 #include "pipeline/fragment/depth.h"
 #include "pipeline/fragment/fragment_span.h"
 #include "pipeline/fragment/logic_op.h"
@@ -125,6 +126,7 @@ struct FragmentPlan {
   FragmentPlanKey key;
   bool read_dst_color = false;  // some written channel reads the destination colour
   bool write_color = false;     // some channel is written
+  BlendLanes8 lanes8;           // the 8-bit colour stage's lane pattern (blend_lanes8.h)
 };
 
 FragmentPlanKey fragment_plan_key(const FragmentOpsState& s, const FragmentTarget& t);
