@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
-#include <utility>
 #include <stdexcept>
+#include <utility>
 
 #include "pipeline/fragment/fragment_plan.h"
 #include "pipeline/gl/enums.h"

@@ -19,7 +19,8 @@ struct FragmentPlanKey;
 
 // What each lane of the four-pixel pattern computes, from a plan key (built once
 // with the plan). usable is false when a channel uses a logic op (left to
-// FixedKernel), for float colour, and in a build without AVX2.
+// FixedKernel), for float colour, and in a build without AVX2; the key does not
+// know M, so the caller takes this path only for M = 255 (color_stage_fixed<255>).
 struct BlendLanes8 {
   bool usable = false;
   bool general = false;  // some lane subtracts or takes MIN / MAX (else every lane is s·S + d·D)
