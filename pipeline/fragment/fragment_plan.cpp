@@ -523,6 +523,16 @@ void with_interleaved(Interleaved op, F f) {
   }
 }
 
+// The colour stage of 8-bit colour (M = 255) with four pixels' channels at
+// once (blend_lanes8.h; plan.lanes8.usable).
+template <class Px>
+void color_lanes8(const FragmentPlan& plan, const FragmentConstants& k, const std::uint16_t* in, std::uint16_t* fb,
+                  Px pixel, int n, const std::uint8_t* alive) {
+  const std::uint32_t* kc = k.blend_color_code.data();
+  if constexpr (std::is_same_v<Px, RowPixels>) blend_lanes8_row(plan.lanes8, kc, in, fb, pixel.first, n, alive);
+  else blend_lanes8_list(plan.lanes8, kc, in, fb, pixel.pixel, n, alive);
+}
+
 // The fixed colour stage of a chunk: `in` its colour codes, fragment j at
 // pixel pixel(j) of `fb`.
 template <std::uint32_t kM, class Px>
@@ -550,22 +560,12 @@ void color_stage_fixed(const FragmentPlan& plan, const FragmentConstants& k, con
           default: break;  // (other masks: color_interleaved)
         }
       }
-      if constexpr (kM == 255) {  // gathered four pixels at a time (blend_lanes8.h)
-        if (plan.lanes8.usable)
-          return blend_lanes8_list(plan.lanes8, k.blend_color_code.data(), in, fb, pixel.pixel, n, alive);
-      }
+      if (kM == 255 && plan.lanes8.usable) return color_lanes8(plan, k, in, fb, pixel, n, alive);  // gathered 4 at a time
     }
     with_interleaved(op, [&](auto o) { color_interleaved<o.value>(m, in, fb, pixel, n, wmask, alive); });
     return;
   }
-  if constexpr (kM == 255) {  // 8-bit colour: four pixels' channels at once (blend_lanes8.h)
-    if (plan.lanes8.usable) {
-      const std::uint32_t* kc = k.blend_color_code.data();
-      if constexpr (std::is_same_v<Px, RowPixels>) blend_lanes8_row(plan.lanes8, kc, in, fb, pixel.first, n, alive);
-      else blend_lanes8_list(plan.lanes8, kc, in, fb, pixel.pixel, n, alive);
-      return;
-    }
-  }
+  if (kM == 255 && plan.lanes8.usable) return color_lanes8(plan, k, in, fb, pixel, n, alive);
   FixedKernel<kM> kern;
   kern.M = k.color_max;
   // One written channel c (the paper's alpha-only passes): FixedKernel::channel and
