@@ -584,6 +584,9 @@ class Context {
         {{0, 0, 0, 1}, {0, 0, 0, 1}, {0, 0, 0, 1}, {0, 0, 0, 1}}};
   };
   CurrentAttribs current_;
+  // The current colours clamped to [0, 1] as every vertex takes them (§2.13.6),
+  // kept by color4 and secondaryColor3 (clamped once per colour, not per vertex).
+  std::array<double, 4> current_color_clamped_{1, 1, 1, 1}, current_secondary_clamped_{0, 0, 0, 0};
   bool in_begin_ = false;
   GLenum begin_mode_ = gl::TRIANGLES;
   std::vector<ClipVertex> begin_vertices_;  // the first begin_count_ are this glBegin's
@@ -598,9 +601,11 @@ class Context {
   bool full_shading_ = false;
   std::function<void(const std::string&)> on_explain_;
   ClipVertex make_vertex(const glm::dvec4& object) const;
-  // A vertex's current colours (clamped) and texture coordinates (after the
-  // texture matrices) into `cv`, its position left to the caller.
+  // A vertex's current colours (clamped) and the profile's units' texture
+  // coordinates (after the texture matrices) into `cv`, its position left to the
+  // caller; unused_units: the units past the profile's, once per vertex made.
   void vertex_attributes(ClipVertex& cv) const;
+  void unused_units(ClipVertex& cv) const;
   void set_texture_enable(GLenum target, bool on);
   bool reject_in_begin(const char* function);
   // The unit index of GL_TEXTUREi, or -1 after an INVALID_ENUM error naming

@@ -258,22 +258,26 @@ void Context::flush_deferred() {
 }
 
 void Context::vertex_attributes(ClipVertex& cv) const {
-  for (int c = 0; c < 4; ++c) {
-    cv.color[c] = clamp01(current_.color[c]);  // §2.13.6 colour clamping
-    cv.secondary[c] = clamp01(current_.secondary[c]);
-  }
+  cv.color = current_color_clamped_;  // §2.13.6 colour clamping (done by color4, secondaryColor3)
+  cv.secondary = current_secondary_clamped_;
   for (int u = 0; u < profile_.texture_units; ++u) {
     const auto& tc = current_.texcoord[u];
     cv.texcoord[u] = texture_matrix_[u].top() * glm::dvec4(tc[0], tc[1], tc[2], tc[3]);
   }
-  // The units past the profile's: their current coordinates stay (0, 0, 0, 1)
-  // and their texture matrices the identity (glMultiTexCoord and
-  // glActiveTexture refuse them), whose product is (0, 0, 0, 1) exactly.
+  // The units past the profile's: unused_units() when the vertex was made.
+}
+
+void Context::unused_units(ClipVertex& cv) const {
+  // Their current coordinates stay (0, 0, 0, 1) and their texture matrices the
+  // identity (glMultiTexCoord and glActiveTexture refuse them), whose product is
+  // (0, 0, 0, 1) exactly. Written once per vertex made: nothing else writes them
+  // (vertex4 reuses begin_vertices_' slots; glEnd and clipping copy vertices).
   for (int u = profile_.texture_units; u < kMaxTextureUnits; ++u) cv.texcoord[u] = glm::dvec4(0, 0, 0, 1);
 }
 
 ClipVertex Context::make_vertex(const glm::dvec4& object) const {
   ClipVertex cv;
+  unused_units(cv);
   vertex_attributes(cv);
   cv.position = projection_.top() * (modelview_.top() * object);  // §2.10 clip coordinates
   return cv;
@@ -286,17 +290,27 @@ void Context::vertex4(double x, double y, double z, double w) {
   // written: constructing one costs more than filling it). The object position
   // is kept: glEnd transforms it (the matrices cannot change inside
   // glBegin/glEnd), or takes its window position from the geometry memo.
-  ClipVertex& cv = begin_count_ < begin_vertices_.size() ? begin_vertices_[begin_count_] : begin_vertices_.emplace_back();
+  ClipVertex* cv = begin_count_ < begin_vertices_.size() ? &begin_vertices_[begin_count_] : nullptr;
+  if (!cv) {
+    cv = &begin_vertices_.emplace_back();
+    unused_units(*cv);
+  }
   ++begin_count_;
-  vertex_attributes(cv);
-  cv.position = glm::dvec4(x, y, z, w);
+  vertex_attributes(*cv);
+  cv->position = glm::dvec4(x, y, z, w);
 }
 void Context::vertex2(double x, double y) { vertex4(x, y, 0, 1); }
 void Context::vertex3(double x, double y, double z) { vertex4(x, y, z, 1); }
 
-void Context::color4(double r, double g, double b, double a) { current_.color = {r, g, b, a}; }
+void Context::color4(double r, double g, double b, double a) {
+  current_.color = {r, g, b, a};
+  for (int c = 0; c < 4; ++c) current_color_clamped_[c] = clamp01(current_.color[c]);
+}
 void Context::color3(double r, double g, double b) { color4(r, g, b, 1); }
-void Context::secondaryColor3(double r, double g, double b) { current_.secondary = {r, g, b, 0}; }
+void Context::secondaryColor3(double r, double g, double b) {
+  current_.secondary = {r, g, b, 0};
+  for (int c = 0; c < 4; ++c) current_secondary_clamped_[c] = clamp01(current_.secondary[c]);
+}
 void Context::normal3(double x, double y, double z) { current_.normal = {x, y, z, 0}; }
 void Context::texCoord4(double s, double t, double r, double q) { current_.texcoord[0] = {s, t, r, q}; }
 void Context::texCoord2(double s, double t) { texCoord4(s, t, 0, 1); }
