@@ -290,14 +290,10 @@ void Context::vertex4(double x, double y, double z, double w) {
   // written: constructing one costs more than filling it). The object position
   // is kept: glEnd transforms it (the matrices cannot change inside
   // glBegin/glEnd), or takes its window position from the geometry memo.
-  ClipVertex* cv = begin_count_ < begin_vertices_.size() ? &begin_vertices_[begin_count_] : nullptr;
-  if (!cv) {
-    cv = &begin_vertices_.emplace_back();
-    unused_units(*cv);
-  }
-  ++begin_count_;
-  vertex_attributes(*cv);
-  cv->position = glm::dvec4(x, y, z, w);
+  if (begin_count_ == begin_vertices_.size()) unused_units(begin_vertices_.emplace_back());
+  ClipVertex& cv = begin_vertices_[begin_count_++];
+  vertex_attributes(cv);
+  cv.position = glm::dvec4(x, y, z, w);
 }
 void Context::vertex2(double x, double y) { vertex4(x, y, 0, 1); }
 void Context::vertex3(double x, double y, double z) { vertex4(x, y, z, 1); }
