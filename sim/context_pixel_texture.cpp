@@ -84,17 +84,17 @@ bool Context::tex_image(const char* fn, int dims, GLenum target, int level, GLen
   };
   // Client data with the fast paths: the upload cache (sim/upload_cache.h) keyed
   // by every input of the result (the profile is the context's, fixed).
-  std::string key;
+  std::optional<UploadKey> key;
   if (fast_paths_ && data && !copy_xy && ow > 0 && oh > 0) {
     const pixel::ClientLayout layout = pixel::client_layout(pixel_store_.unpack, width, height,
                                                             pixel::color_format_components(format), pixel::type_size(type));
-    const std::size_t extent = layout.extent(width, height);
-    key.reserve(extent + 4096);
-    for (const int v : {dims, width, height, border, static_cast<int>(sizeof(T))}) append_bytes(key, v);
-    for (const GLenum e : {internalformat, format, type}) append_bytes(key, e);
-    append_transfer_key(key, pixel_store_.unpack, transfer_inputs());
-    key.append(static_cast<const char*>(data), extent);
-    if (const TextureImage* hit = upload_cache_.find(key)) {
+    std::string head;
+    head.reserve(4096);
+    for (const int v : {dims, width, height, border, static_cast<int>(sizeof(T))}) append_bytes(head, v);
+    for (const GLenum e : {internalformat, format, type}) append_bytes(head, e);
+    append_transfer_key(head, pixel_store_.unpack, transfer_inputs());
+    key = UploadKey::make(std::move(head), {static_cast<const char*>(data), layout.extent(width, height)});
+    if (const TextureImage* hit = upload_cache_.find(*key)) {
       level_image() = *hit;
       return true;
     }
@@ -105,7 +105,7 @@ bool Context::tex_image(const char* fn, int dims, GLenum target, int level, GLen
       TextureImage& ti = level_image();
       ti = pixel::texture_level(ow, oh, internalformat, *f, border, profile_);
       pixel::store_byte_texels(*tab, data, width, height, pixel_store_.unpack, ti, 0, 0);
-      if (!key.empty()) upload_cache_.insert(std::move(key), ti);
+      if (key) upload_cache_.insert(*key, ti);
       return true;
     }
   }
@@ -117,7 +117,7 @@ bool Context::tex_image(const char* fn, int dims, GLenum target, int level, GLen
   if (ow == 0 || oh == 0) img = RgbaImage<T>(0, 0);
   TextureImage& ti = level_image();
   ti = pixel::make_texture_image(img, internalformat, *f, border, profile_);
-  if (!key.empty()) upload_cache_.insert(std::move(key), ti);
+  if (key) upload_cache_.insert(*key, ti);
   return true;
 }
 

@@ -11,6 +11,7 @@
 //   encoding 1: binary64 values, 8 bytes LE (negative zero written as +0).
 //   Printed as 16 lower-case hex digits.
 #pragma once
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
@@ -30,6 +31,13 @@ inline void hash_mix(std::uint64_t& h, std::uint64_t v) {
   h = (h ^ v) * 0xBF58476D1CE4E5B9ull;
   h ^= h >> 29;
 }
+
+// A fast hash of a byte string for the in-memory caches (sim/upload_cache: the
+// client bytes of an upload): eight 32-bit lanes of multiply-xorshift over 32-byte
+// blocks (one vector; four vectors over 128-byte blocks), then the lanes, the tail
+// and the length through hash_mix. Not a stable format, and a collision costs only a
+// comparison: the caches compare the bytes themselves.
+std::uint64_t bytes_hash(const void* data, std::size_t n, std::uint64_t seed = 0);
 
 // FNV-1a 64 incremental helper (exposed for tests and for hashing other data).
 struct Fnv1a64 {

@@ -1,5 +1,10 @@
 #include "sim/upload_cache.h"
 
+#include <iterator>
+#include <utility>
+
+#include "sim/hash.h"
+
 namespace ffsim {
 
 namespace {
@@ -77,36 +82,65 @@ void append_transfer_key(std::string& key, const pixel::PixelStoreModes& u, cons
   append_bytes(key, in.color_matrix);
 }
 
-std::size_t UploadCache::cost(const std::string& key, const TextureImage& im) {
-  return key.size() + im.codes.size() * sizeof(std::uint16_t) + im.values.size() * sizeof(double);
+UploadKey UploadKey::make(std::string head, std::string_view data) {
+  UploadKey k{std::move(head), data, 0};
+  k.hash = bytes_hash(k.data.data(), k.data.size(), bytes_hash(k.head.data(), k.head.size()));
+  return k;
 }
 
-const TextureImage* UploadCache::find(const std::string& key) {
-  const auto it = map_.find(key);
-  if (it == map_.end()) {
+std::size_t UploadCache::cost(std::size_t head, std::size_t data, const TextureImage& im) {
+  return head + data + im.codes.size() * sizeof(std::uint16_t) + im.values.size() * sizeof(double);
+}
+
+UploadCache::Order::iterator UploadCache::lookup(const UploadKey& key) {
+  const auto [lo, hi] = index_.equal_range(key.hash);
+  for (auto it = lo; it != hi; ++it) {
+    const Entry& e = *it->second;
+    if (e.head == key.head && e.data == key.data) return it->second;  // every input equal
+  }
+  return order_.end();
+}
+
+const TextureImage* UploadCache::find(const UploadKey& key) {
+  const auto it = lookup(key);
+  if (it == order_.end()) {
     ++misses_;
     return nullptr;
   }
   ++hits_;
-  return &it->second;
+  return &it->image;
 }
 
-void UploadCache::insert(std::string key, const TextureImage& image) {
-  const std::size_t c = cost(key, image);
-  if (c > budget_ || map_.count(key)) return;
+void UploadCache::insert(const UploadKey& key, const TextureImage& image) {
+  // Admission: stored on the second offer of the same inputs (by hash; a collision
+  // only stores an entry early).
+  if (seen_.erase(key.hash) == 0) {
+    if (seen_.size() >= kSeenLimit) seen_.clear();
+    seen_.insert(key.hash);
+    return;
+  }
+  const std::size_t c = cost(key.head.size(), key.data.size(), image);
+  if (c > budget_ || lookup(key) != order_.end()) return;
   while (bytes_ + c > budget_ && !order_.empty()) {  // oldest first
-    const auto it = map_.find(*order_.front());
+    const Entry& old = order_.front();
+    const auto [lo, hi] = index_.equal_range(old.hash);
+    for (auto it = lo; it != hi; ++it)
+      if (&*it->second == &old) {
+        index_.erase(it);
+        break;
+      }
+    bytes_ -= cost(old.head.size(), old.data.size(), old.image);
     order_.pop_front();
-    bytes_ -= cost(it->first, it->second);
-    map_.erase(it);
   }
   bytes_ += c;
-  order_.push_back(&map_.emplace(std::move(key), image).first->first);
+  order_.push_back({key.hash, key.head, std::string(key.data), image});
+  index_.emplace(key.hash, std::prev(order_.end()));
 }
 
 void UploadCache::clear() {
-  map_.clear();
   order_.clear();
+  index_.clear();
+  seen_.clear();
   bytes_ = 0;
 }
 

@@ -22,6 +22,9 @@
 // equal hashes there are asserted by this one expectation.
 #include <doctest/doctest.h>
 
+#include <set>
+#include <vector>
+
 #include "sim/hash.h"
 #include "sim/test_pattern.h"
 
@@ -63,4 +66,28 @@ TEST_CASE("hash: a missing buffer is an error, not a silent hash") {
   Framebuffer fb(f);
   CHECK_THROWS_AS(buffer_hash(fb, BufferKind::Stencil), FramebufferError);
   CHECK_THROWS_AS(buffer_hash(fb, BufferKind::Depth), FramebufferError);
+}
+
+TEST_CASE("bytes_hash: every byte, the length and the seed change it") {
+  // The upload cache's hash (sim/hash.h): 128-byte blocks in four vectors of
+  // eight lanes, then 32-byte blocks, then a tail. 300 bytes: two 128-byte blocks,
+  // one 32-byte block and a 12-byte tail; each single-bit change, in every
+  // position, must change the hash (a lane, a vector or the tail dropped would not).
+  std::vector<unsigned char> b(300);
+  for (std::size_t i = 0; i < b.size(); ++i) b[i] = static_cast<unsigned char>(i * 37 + 11);
+  const std::uint64_t h = bytes_hash(b.data(), b.size());
+  CHECK(bytes_hash(b.data(), b.size()) == h);  // deterministic
+  std::set<std::uint64_t> seen{h};
+  for (std::size_t i = 0; i < b.size(); ++i)
+    for (int bit : {0, 7}) {
+      b[i] ^= static_cast<unsigned char>(1 << bit);
+      seen.insert(bytes_hash(b.data(), b.size()));
+      b[i] ^= static_cast<unsigned char>(1 << bit);
+    }
+  CHECK(seen.size() == 1 + 2 * b.size());
+  // Trailing zeros are not the shorter string; the seed separates equal bytes.
+  std::vector<unsigned char> z(64, 0);
+  CHECK(bytes_hash(z.data(), 32) != bytes_hash(z.data(), 64));
+  CHECK(bytes_hash(z.data(), 0) != bytes_hash(z.data(), 1));
+  CHECK(bytes_hash(b.data(), b.size(), 1) != h);
 }

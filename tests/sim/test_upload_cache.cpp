@@ -123,8 +123,9 @@ void random_sequence(const std::string& profile_name, std::uint32_t seed, int st
         });
         break;
       }
-      default: {  // an upload (most steps): half of them repeat the previous call
-        if (uploads == 0 || pick(2) == 0)
+      default: {  // an upload (most steps): two in three repeat the previous call (the
+                  // cache stores a call seen twice, so the third hits)
+        if (uploads == 0 || pick(3) == 0)
           call = {pick(3), formats[pick(4)], internals[pick(6)], pick(2), pick(4) == 0,
                   pick(3) == 0 ? gl::BYTE : gl::UNSIGNED_BYTE};
         const auto& im = images[static_cast<std::size_t>(call.image)];
@@ -167,59 +168,122 @@ TEST_CASE("upload cache: random state changes and uploads equal the computed upl
   for (std::uint32_t seed = 200; seed <= 201; ++seed) random_sequence("float32", seed, 150);
 }
 
-TEST_CASE("upload cache: the same upload hits; any changed input misses") {
+TEST_CASE("upload cache: the same upload hits from its third time; any changed input misses") {
   Context ctx(profile("geforce256"), 4, 4);
   std::vector<std::uint8_t> im(4 * 8 * 8, 100);
   auto upload = [&] { ctx.texImage2D(gl::TEXTURE_2D, 0, gl::RGBA8, 8, 8, 0, gl::RGBA, gl::UNSIGNED_BYTE, im.data()); };
   auto level = [&] { return ctx.bound_texture(0, gl::TEXTURE_2D).levels.at(0).codes; };
-  upload();
+  const UploadCache& cache = ctx.upload_cache();
+  upload();  // seen once: its hash remembered, nothing stored (admission)
   const auto first = level();
+  CHECK(cache.entries() == 0);
+  upload();  // seen twice: computed, then stored
+  CHECK(cache.hits() == 0);
+  CHECK(cache.entries() == 1);
   upload();
-  CHECK(ctx.upload_cache().hits() == 1);
+  CHECK(cache.hits() == 1);
   CHECK(level() == first);
   // Each of these changes the result; each must miss (and the level follows it).
   ctx.pixelTransferf(gl::RED_BIAS, 0.25);
   upload();
-  CHECK(ctx.upload_cache().hits() == 1);
+  CHECK(cache.hits() == 1);
   CHECK(level()[0] == 164);  // 100/255 + 0.25 = 0.642 -> round(0.642 * 255) = 164
   ctx.pixelTransferf(gl::RED_BIAS, 0);
   upload();  // back to the first state: a hit, the first level
-  CHECK(ctx.upload_cache().hits() == 2);
+  CHECK(cache.hits() == 2);
   CHECK(level() == first);
   im[0] = 101;  // the client bytes
   upload();
-  CHECK(ctx.upload_cache().hits() == 2);
+  CHECK(cache.hits() == 2);
   CHECK(level()[0] == 101);
   ctx.texImage2D(gl::TEXTURE_2D, 0, gl::RGB8, 8, 8, 0, gl::RGBA, gl::UNSIGNED_BYTE, im.data());  // internal format
-  CHECK(ctx.upload_cache().hits() == 2);
+  CHECK(cache.hits() == 2);
   CHECK(ctx.bound_texture(0, gl::TEXTURE_2D).levels.at(0).base == BaseFormat::RGB);
-  // Bytes outside the image the unpack reads (beyond its extent) do not matter.
+  // Bytes outside the image the unpack reads (beyond its extent) do not matter:
+  // this call is the RGB8 call's second sighting (stored), the next one hits.
   std::vector<std::uint8_t> longer(im);
   longer.resize(im.size() + 64, 7);
+  const std::size_t stored = cache.entries();
   ctx.texImage2D(gl::TEXTURE_2D, 0, gl::RGB8, 8, 8, 0, gl::RGBA, gl::UNSIGNED_BYTE, longer.data());
-  CHECK(ctx.upload_cache().hits() == 3);
+  CHECK(cache.entries() == stored + 1);
+  ctx.texImage2D(gl::TEXTURE_2D, 0, gl::RGB8, 8, 8, 0, gl::RGBA, gl::UNSIGNED_BYTE, im.data());
+  CHECK(cache.hits() == 3);
 }
+
+namespace {
+TextureImage texels(std::size_t n) {
+  TextureImage im;
+  im.codes.assign(n, 1);
+  return im;
+}
+// Offered twice: stored (admission).
+void store(UploadCache& cache, const UploadKey& k, const TextureImage& im) {
+  cache.insert(k, im);
+  cache.insert(k, im);
+}
+}  // namespace
 
 TEST_CASE("upload cache: entries beyond the byte budget are evicted oldest first") {
   UploadCache cache(1000);
-  TextureImage im;
-  im.codes.assign(200, 1);  // 400 bytes of texels
-  cache.insert("a", im);
-  cache.insert("b", im);
+  const TextureImage im = texels(200);  // 400 bytes of texels
+  const UploadKey a = UploadKey::make("a", ""), b = UploadKey::make("b", ""), c = UploadKey::make("c", "");
+  store(cache, a, im);
+  store(cache, b, im);
   CHECK(cache.entries() == 2);
   CHECK(cache.bytes() == 802);
-  cache.insert("c", im);  // over the budget: "a" goes
+  store(cache, c, im);  // over the budget: "a" goes
   CHECK(cache.entries() == 2);
-  CHECK(cache.find("a") == nullptr);
-  CHECK(cache.find("b") != nullptr);
-  CHECK(cache.find("c") != nullptr);
-  TextureImage huge;
-  huge.codes.assign(600, 1);  // larger than the whole budget: not stored, nothing evicted
-  cache.insert("d", huge);
-  CHECK(cache.find("d") == nullptr);
+  CHECK(cache.find(a) == nullptr);
+  CHECK(cache.find(b) != nullptr);
+  CHECK(cache.find(c) != nullptr);
+  const UploadKey d = UploadKey::make("d", "");
+  store(cache, d, texels(600));  // larger than the whole budget: not stored, nothing evicted
+  CHECK(cache.find(d) == nullptr);
   CHECK(cache.entries() == 2);
   CHECK(cache.bytes() <= 1000);
   cache.clear();
   CHECK(cache.entries() == 0);
   CHECK(cache.bytes() == 0);
+  cache.insert(b, im);  // clear() forgets the hashes seen too: a first offer again
+  CHECK(cache.entries() == 0);
+}
+
+TEST_CASE("upload cache: a hit needs every input byte equal, whatever the hash") {
+  UploadCache cache;
+  const TextureImage im = texels(4);
+  const std::string data = "client bytes", other = "client bytez";
+  const UploadKey k = UploadKey::make("head", data);
+  store(cache, k, im);
+  REQUIRE(cache.find(k) != nullptr);
+  // The same hash (forced) with different bytes in the data, or in the head: no hit.
+  UploadKey data_differs = UploadKey::make("head", other);
+  data_differs.hash = k.hash;
+  CHECK(cache.find(data_differs) == nullptr);
+  UploadKey head_differs = UploadKey::make("hexd", data);
+  head_differs.hash = k.hash;
+  CHECK(cache.find(head_differs) == nullptr);
+  // Both stored under the one hash, each found as itself.
+  store(cache, data_differs, texels(8));
+  CHECK(cache.entries() == 2);
+  CHECK(cache.find(k)->codes.size() == 4);
+  CHECK(cache.find(data_differs)->codes.size() == 8);
+  // The split between head and data is part of the inputs: ("ab", "c") is not ("a", "bc").
+  UploadKey split = UploadKey::make("hea", "d" + data);
+  split.hash = k.hash;
+  CHECK(cache.find(split) == nullptr);
+}
+
+TEST_CASE("upload cache: the hashes seen once are bounded") {
+  UploadCache cache;
+  const TextureImage im = texels(1);
+  for (std::size_t i = 0; i < UploadCache::kSeenLimit; ++i) cache.insert(UploadKey::make(std::to_string(i), ""), im);
+  CHECK(cache.entries() == 0);
+  cache.insert(UploadKey::make("0", ""), im);  // still remembered: stored
+  CHECK(cache.entries() == 1);
+  cache.insert(UploadKey::make("new", ""), im);   // remembered: the limit reached again
+  cache.insert(UploadKey::make("new2", ""), im);  // beyond it: all forgotten, then "new2" remembered
+  cache.insert(UploadKey::make("1", ""), im);     // forgotten: a first offer again
+  CHECK(cache.entries() == 1);
+  cache.insert(UploadKey::make("new2", ""), im);
+  CHECK(cache.entries() == 2);
 }
