@@ -476,6 +476,9 @@ class Context {
   // Pixel rectangles (CopyPixels) whose rows went through the fragment
   // operations in bands on the pool (docs/performance.md 19.6).
   std::uint64_t split_pixel_rects() const { return split_pixel_rects_; }
+  // Texture uploads (and sub-images) unpacked, transferred and stored in row
+  // bands on the pool (upload_in_bands, docs/performance.md 24.2).
+  std::uint64_t split_uploads() const { return split_uploads_; }
   // glEnds whose vertices were put in window form once and shared by their
   // polygons (span path, smooth shading, every vertex inside the view volume).
   std::uint64_t shared_vertex_draws() const { return shared_vertex_draws_; }
@@ -550,6 +553,14 @@ class Context {
   template <class T>
   std::optional<pixel::ByteTexelTables> byte_texel_tables(int dims, GLenum format, GLenum type,
                                                           const TextureImage& shape) const;
+  // Threads: client data whose transfer is per pixel (no convolution), of at least
+  // kSplitUploadTexels, unpacked, transferred and stored at (x0, y0) of the level
+  // `target()` gives, in row bands on the pool (docs/performance.md 24.2). False,
+  // doing nothing (target not called), when that does not apply.
+  static constexpr std::int64_t kSplitUploadTexels = 4096;
+  template <class T>
+  bool upload_in_bands(const void* data, int width, int height, GLenum format, GLenum type, pixel::ImageDims dims,
+                       int x0, int y0, const std::function<TextureImage&()>& target);
   template <class T>
   bool tex_image(const char* fn, int dims, GLenum target, int level, GLenum internalformat, int width, int height,
                  int border, GLenum format, GLenum type, const void* data, const int* copy_xy);
@@ -744,6 +755,7 @@ class Context {
   std::vector<TriangleRef> sequence_scratch_;  // a glEnd's triangles (one thread)
   std::uint64_t fast_runs_ = 0, split_batches_ = 0, split_triangles_ = 0, shared_vertex_draws_ = 0, batch_memo_uses_ = 0;
   std::uint64_t split_pixel_rects_ = 0;
+  std::uint64_t split_uploads_ = 0;
   // Scratch of the span path, reused from run to run (sim/draw_span.cpp).
   // (alignas(64): the bands' scratch never share a cache line, so two threads'
   // writes to their own members do not take the line from each other; the same

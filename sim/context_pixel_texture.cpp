@@ -11,6 +11,7 @@
 #include "pipeline/pixel_transfer/formats.h"
 #include "pipeline/pixel_transfer/unpack.h"
 #include "sim/context.h"
+#include "sim/worker_pool.h"
 
 namespace ffsim {
 
@@ -49,6 +50,34 @@ std::optional<pixel::ByteTexelTables> Context::byte_texel_tables(int dims, GLenu
       pixel::plan_transfer(in, dims == 1 ? pixel::ImageDims::OneD : pixel::ImageDims::TwoD);
   if (!pixel::plan_is_componentwise(plan)) return std::nullopt;
   return pixel::byte_texel_tables<T>(format, type, plan, in, shape, profile_);
+}
+
+template <class T>
+bool Context::upload_in_bands(const void* data, int width, int height, GLenum format, GLenum type,
+                              pixel::ImageDims dims, int x0, int y0, const std::function<TextureImage&()>& target) {
+  if (threads_ <= 1 || !data || height < 2 || static_cast<std::int64_t>(width) * height < kSplitUploadTexels)
+    return false;
+  const pixel::TransferInputs in = transfer_inputs();
+  const pixel::TransferPlan plan = pixel::plan_transfer(in, dims);
+  if (plan.has(pixel::Stage::Convolution)) return false;  // a pixel's result reads its neighbours
+  TextureImage& ti = target();
+  if (!pool_ || pool_->threads() != threads_) pool_ = WorkerPool::borrow(threads_);
+  const int bands = std::min(height, 2 * threads_);
+  ++split_uploads_;
+  // Each pixel through the same unpack, plan and store_texels as the whole image
+  // (make_texture_image is texture_level + store_texels at (0, 0)); the bands'
+  // rows are disjoint. Band k's rows start skip_rows + y later in the client
+  // array (ClientLayout::offset).
+  pool_->run(bands, [&](int k) {
+    const int r0 = static_cast<int>(static_cast<std::int64_t>(height) * k / bands);
+    const int r1 = static_cast<int>(static_cast<std::int64_t>(height) * (k + 1) / bands);
+    pixel::PixelStoreModes u = pixel_store_.unpack;
+    u.skip_rows += r0;
+    RgbaImage<T> rows = pixel::unpack_rgba<T>(data, width, r1 - r0, format, type, u);
+    rows = pixel::run_plan(plan, in, std::move(rows));
+    pixel::store_texels(rows, ti, x0, y0 + r0, profile_);
+  });
+  return true;
 }
 
 template <class T>
@@ -109,6 +138,15 @@ bool Context::tex_image(const char* fn, int dims, GLenum target, int level, GLen
       return true;
     }
   }
+  if (data && !copy_xy && ow > 0 && oh > 0 &&
+      upload_in_bands<T>(data, width, height, format, type, idims, 0, 0, [&]() -> TextureImage& {
+        TextureImage& ti = level_image();
+        ti = pixel::texture_level(ow, oh, internalformat, *f, border, profile_);
+        return ti;
+      })) {
+    if (key) upload_cache_.insert(*key, obj.levels[static_cast<std::size_t>(level)]);
+    return true;
+  }
   RgbaImage<T> img;
   if (copy_xy) img = read_color_rect<T>(copy_xy[0], copy_xy[1], width, height);
   else if (data) img = pixel::unpack_rgba<T>(data, width, height, format, type, pixel_store_.unpack);
@@ -153,6 +191,12 @@ bool Context::tex_sub_image(const char* fn, int dims, GLenum target, int level, 
       ++obj.version;
       return true;
     }
+  if (!copy_xy && ow > 0 && oh > 0 &&
+      upload_in_bands<T>(data, width, height, format, type, idims, xoffset + b, dims == 1 ? 0 : yoffset + b,
+                         [&]() -> TextureImage& { return ti; })) {
+    ++obj.version;
+    return true;
+  }
   RgbaImage<T> img = copy_xy ? read_color_rect<T>(copy_xy[0], copy_xy[1], width, height)
                              : pixel::unpack_rgba<T>(data, width, height, format, type, pixel_store_.unpack);
   img = transfer(std::move(img), idims);
