@@ -28,6 +28,7 @@
 #include <ostream>
 #include <sstream>
 #include <thread>
+#include <vector>
 
 #include "pipeline/gl/enums.h"
 #include "sim/bench/accuracy_metrics.h"
@@ -82,6 +83,40 @@ double copy_bandwidth(std::size_t bytes, int repeats) {
     if (t > 0) best = std::max(best, 2.0 * static_cast<double>(bytes) / t);
   }
   return best;
+}
+
+// This machine's own ceiling for `n` threads: a loop over a 256 KB buffer per
+// thread (multiply-xorshift of 32-bit words: the caches and the ALUs, no shared
+// data) timed on one thread, then on n threads at once; returns n x the one
+// thread's time / the n threads' time, best of the repeats of each. About n when
+// n cores are free and run at one speed; less when the cores are shared (a
+// virtual machine's neighbours) or slow down together. The speed-up of a trace
+// at n threads is read against it (docs/performance.md 24.3).
+volatile std::uint32_t ceiling_sink = 0;
+double parallel_ceiling(int n, int repeats) {
+  auto work = [](std::vector<std::uint32_t>& buf) {
+    for (std::uint32_t r = 0; r < 2048; ++r)
+      for (std::uint32_t& x : buf) {
+        x = (x ^ r) * 0x85EBCA6Bu;
+        x ^= x >> 13;
+      }
+  };
+  std::vector<std::vector<std::uint32_t>> bufs(static_cast<std::size_t>(n), std::vector<std::uint32_t>(65536, 1));
+  auto timed = [&](int threads) {
+    double best = 1e300;
+    for (int r = 0; r < repeats; ++r) {
+      const auto t0 = Clock::now();
+      std::vector<std::thread> others;
+      for (int k = 1; k < threads; ++k) others.emplace_back(work, std::ref(bufs[static_cast<std::size_t>(k)]));
+      work(bufs[0]);
+      for (std::thread& t : others) t.join();
+      best = std::min(best, seconds_since(t0));
+    }
+    return best;
+  };
+  const double one = timed(1), all = timed(n);
+  for (const auto& b : bufs) ceiling_sink = ceiling_sink ^ b[12345];  // the buffers are read: the loops must run
+  return all > 0 ? n * one / all : 0;
 }
 
 trace::Program load(const std::string& path, const Sets& sets) {
@@ -491,6 +526,18 @@ int run_perf(const std::vector<std::string>& args, std::ostream& out, std::ostre
     }
     if (o.threads) {
       Csv csv(fs::path(o.out_dir) / "perf_threads.csv", csv_header);
+      // The machine's ceiling first (docs/performance.md 24.3), measured now: the
+      // speed of a virtual machine's cores changes from minute to minute.
+      std::string ceiling;
+      for (int n : o.thread_counts)
+        if (n > 1) ceiling += (ceiling.empty() ? "" : ", ") + std::to_string(n) + " threads " + fixed(parallel_ceiling(n, 5), 2) + "x";
+      if (!ceiling.empty()) {
+        out << "parallel ceiling of this machine (a cache-resident loop per thread, all at once, against one): " << ceiling
+            << "\n";
+        md << "Parallel ceiling of this machine, measured before this table (a cache-resident loop per thread, all "
+              "threads at once, against one thread; docs/performance.md 24.3): "
+           << ceiling << ".\n\n";
+      }
       table_head("Scaling with worker threads (`--threads`)");
       // The terrain (small triangles: drawn whole on one thread) and the polygon at
       // 1024^2 (two large triangles: split into row bands).
@@ -503,6 +550,17 @@ int run_perf(const std::vector<std::string>& args, std::ostream& out, std::ostre
             thread_rows.push_back(run_trace_case(o, {t, scene, w, h, n}, o.repeat));
             frame_line(thread_rows.back(), csv, "threads");
           }
+      // Speed-ups against the same trace and scene on one thread (this table's row).
+      std::string speedups;
+      for (const TraceRow& r : thread_rows)
+        for (const TraceRow& one : thread_rows)
+          if (r.c.threads > 1 && one.c.threads == 1 && one.c.trace == r.c.trace && one.c.scene == r.c.scene)
+            speedups += (speedups.empty() ? "" : ", ") + r.c.trace + " " + r.c.scene + " " + std::to_string(r.c.threads) +
+                        " threads " + fixed(one.t.median / r.t.median, 2) + "x";
+      if (!speedups.empty()) {
+        out << "speed-up against one thread: " << speedups << "\n";
+        md << "\nSpeed-up against one thread (medians): " << speedups << ".\n";
+      }
       out << "\n";
       md << "\n" << floor_note;
       const std::string svg = "perf_threads.svg";
