@@ -528,16 +528,13 @@ int run_perf(const std::vector<std::string>& args, std::ostream& out, std::ostre
       Csv csv(fs::path(o.out_dir) / "perf_threads.csv", csv_header);
       // The machine's ceiling first (docs/performance.md 24.3), measured now: the
       // speed of a virtual machine's cores changes from minute to minute.
-      std::string ceiling;
-      for (int n : o.thread_counts)
-        if (n > 1) ceiling += (ceiling.empty() ? "" : ", ") + std::to_string(n) + " threads " + fixed(parallel_ceiling(n, 5), 2) + "x";
-      if (!ceiling.empty()) {
-        out << "parallel ceiling of this machine (a cache-resident loop per thread, all at once, against one): " << ceiling
-            << "\n";
-        md << "Parallel ceiling of this machine, measured before this table (a cache-resident loop per thread, all "
-              "threads at once, against one thread; docs/performance.md 24.3): "
-           << ceiling << ".\n\n";
-      }
+      auto ceilings = [&] {
+        std::string c;
+        for (int n : o.thread_counts)
+          if (n > 1) c += (c.empty() ? "" : ", ") + std::to_string(n) + " threads " + fixed(parallel_ceiling(n, 5), 2) + "x";
+        return c;
+      };
+      const std::string ceiling_before = ceilings();
       table_head("Scaling with worker threads (`--threads`)");
       // The terrain (small triangles: drawn whole on one thread) and the polygon at
       // 1024^2 (two large triangles: split into row bands).
@@ -560,6 +557,15 @@ int run_perf(const std::vector<std::string>& args, std::ostream& out, std::ostre
       if (!speedups.empty()) {
         out << "speed-up against one thread: " << speedups << "\n";
         md << "\nSpeed-up against one thread (medians): " << speedups << ".\n";
+      }
+      if (!ceiling_before.empty()) {
+        const std::string ceiling_after = ceilings();
+        out << "parallel ceiling of this machine (a cache-resident loop per thread, all at once, against one), "
+               "before / after this table: "
+            << ceiling_before << " / " << ceiling_after << "\n";
+        md << "\nParallel ceiling of this machine, measured just before / after this table (a cache-resident loop "
+              "per thread, all threads at once, against one thread; docs/performance.md 24.3): "
+           << ceiling_before << " / " << ceiling_after << ".\n";
       }
       out << "\n";
       md << "\n" << floor_note;
