@@ -66,8 +66,8 @@ bool Context::upload_in_bands(const void* data, int width, int height, GLenum fo
   ++split_uploads_;
   // Each pixel through the same unpack, plan and store_texels as the whole image
   // (make_texture_image is texture_level + store_texels at (0, 0)); the bands'
-  // rows are disjoint. Band k's rows start skip_rows + y later in the client
-  // array (ClientLayout::offset).
+  // rows are disjoint. Band k's first row r0 is read as if UNPACK_SKIP_ROWS were
+  // r0 larger (ClientLayout::offset: the skip and the row add alike).
   pool_->run(bands, [&](int k) {
     const int r0 = static_cast<int>(static_cast<std::int64_t>(height) * k / bands);
     const int r1 = static_cast<int>(static_cast<std::int64_t>(height) * (k + 1) / bands);

@@ -87,6 +87,4 @@ std::uint64_t bytes_hash(const void* data, std::size_t n, std::uint64_t seed) {
   return h;
 }
 
-
-
 }  // namespace ffsim

@@ -94,3 +94,40 @@ TEST_CASE("bench --perf: bad arguments are one-line usage errors") {
   fs::remove(bad, ec);
   fs::remove_all(fs::temp_directory_path() / "ffsim-perf-missing", ec);
 }
+
+TEST_CASE("bench --perf: the threads table prints each speed-up and the machine's ceiling beside it") {
+  const fs::path dir = fs::temp_directory_path() / ("ffsim-perf-threads-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const Run r = run({"bench", "--perf", "--only", "threads", "--quick", "--repeat", "1", "--threads", "1,2",
+                     "--traces", FFSIM_SOURCE_DIR "/traces", "--out", dir.string()});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  auto line_with = [](const std::string& text, const std::string& start) {
+    const auto at = text.find(start);
+    return at == std::string::npos ? std::string() : text.substr(at, text.find('\n', at) - at);
+  };
+  auto count = [](const std::string& s, const std::string& what) {
+    int n = 0;
+    for (auto at = s.find(what); at != std::string::npos; at = s.find(what, at + 1)) ++n;
+    return n;
+  };
+  // One speed-up per trace and scene at 2 threads (3 traces x 2 scenes), and the
+  // ceiling for 2 threads before and after the table.
+  const std::string speedups = line_with(r.out, "speed-up against one thread: ");
+  CHECK(count(speedups, " 2 threads ") == 6);
+  CHECK(count(speedups, "kautz-geforce-aa terrain 2 threads ") == 1);
+  const std::string ceiling = line_with(r.out, "parallel ceiling of this machine");
+  CHECK(count(ceiling, "2 threads ") == 2);
+  std::ifstream md(dir / "perf.md");
+  std::stringstream text;
+  text << md.rdbuf();
+  CHECK(text.str().find("Speed-up against one thread (medians): ") != std::string::npos);
+  CHECK(text.str().find("Parallel ceiling of this machine, measured just before / after this table") != std::string::npos);
+  // No ceiling for one thread alone.
+  const Run one = run({"bench", "--perf", "--only", "threads", "--quick", "--repeat", "1", "--threads", "1",
+                       "--traces", FFSIM_SOURCE_DIR "/traces", "--out", dir.string()});
+  REQUIRE(one.code == 0);
+  CHECK(one.out.find("parallel ceiling") == std::string::npos);
+  CHECK(one.out.find("speed-up against one thread") == std::string::npos);
+  fs::remove_all(dir);
+}
