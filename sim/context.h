@@ -673,8 +673,9 @@ class Context {
   // bounding box misses the window).
   void batch_triangle(std::size_t a, std::size_t b, std::size_t c, const DrawSetup& ds);
   void flush_batch(const DrawSetup& ds);
-  // The pool (made or remade for threads()) and scratch, spans and counters for
-  // at least `bands` bands.
+  // The pool, borrowed (again) when it is missing or sized for other than threads().
+  WorkerPool& pool();
+  // The pool, and scratch, spans and counters for at least `bands` bands.
   void ready_bands(int bands);
   // The bands' fragment and run counts added to the Context's, and zeroed.
   void sum_band_counts();

@@ -61,14 +61,13 @@ bool Context::upload_in_bands(const void* data, int width, int height, GLenum fo
   const pixel::TransferPlan plan = pixel::plan_transfer(in, dims);
   if (plan.has(pixel::Stage::Convolution)) return false;  // a pixel's result reads its neighbours
   TextureImage& ti = target();
-  if (!pool_ || pool_->threads() != threads_) pool_ = WorkerPool::borrow(threads_);
   const int bands = std::min(height, 2 * threads_);
   ++split_uploads_;
   // Each pixel through the same unpack, plan and store_texels as the whole image
   // (make_texture_image is texture_level + store_texels at (0, 0)); the bands'
   // rows are disjoint. Band k's first row r0 is read as if UNPACK_SKIP_ROWS were
   // r0 larger (ClientLayout::offset: the skip and the row add alike).
-  pool_->run(bands, [&](int k) {
+  pool().run(bands, [&](int k) {
     const int r0 = static_cast<int>(static_cast<std::int64_t>(height) * k / bands);
     const int r1 = static_cast<int>(static_cast<std::int64_t>(height) * (k + 1) / bands);
     pixel::PixelStoreModes u = pixel_store_.unpack;

@@ -737,8 +737,13 @@ void Context::batch_triangle(std::size_t a, std::size_t b, std::size_t c, const 
   batch_triangles_.push_back({{static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), static_cast<std::uint32_t>(c)}, r0, r1});
 }
 
-void Context::ready_bands(int bands) {
+WorkerPool& Context::pool() {
   if (!pool_ || pool_->threads() != threads_) pool_ = WorkerPool::borrow(threads_);
+  return *pool_;
+}
+
+void Context::ready_bands(int bands) {
+  pool();
   if (band_scratch_.size() < static_cast<std::size_t>(bands)) {
     band_scratch_.resize(static_cast<std::size_t>(bands));
     band_spans_.resize(static_cast<std::size_t>(bands));

@@ -20,12 +20,6 @@ using namespace ffsim::test;
 
 namespace {
 
-Profile profile(const std::string& name) {
-  const auto p = find_builtin_profile(name);
-  REQUIRE(p);
-  return *p;
-}
-
 void set_unpack(Context& c, int alignment, int skip_rows, int skip_pixels, int row_length, bool swap) {
   c.pixelStorei(gl::UNPACK_ALIGNMENT, alignment);
   c.pixelStorei(gl::UNPACK_SKIP_ROWS, skip_rows);
@@ -94,7 +88,7 @@ TEST_CASE("upload bands: uploads split over 2 and 3 threads equal one thread's, 
       const std::string profile_name = name;
       CAPTURE(profile_name);
       CAPTURE(seed);
-      Context one(profile(name), 4, 4), two(profile(name), 4, 4), three(profile(name), 4, 4);
+      Context one(profile_named(name), 4, 4), two(profile_named(name), 4, 4), three(profile_named(name), 4, 4);
       two.set_threads(2);
       three.set_threads(3);
       Context* all[] = {&one, &two, &three};
@@ -155,7 +149,7 @@ TEST_CASE("upload bands: uploads split over 2 and 3 threads equal one thread's, 
 
 TEST_CASE("upload bands: a convolution, a small image or one thread keeps the whole-image path") {
   std::vector<std::uint8_t> client(4 * 128 * 128, 77);
-  Context c(profile("geforce256"), 4, 4);
+  Context c(profile_named("geforce256"), 4, 4);
   c.set_threads(2);
   double m[16] = {0, 0, 0, 0.5, 0, 0, 0, 0.5, 0, 0, 0, 0.5, 0, 0, 0, 0.5};  // not per component: no byte table
   c.matrixMode(gl::COLOR);
