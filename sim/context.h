@@ -38,6 +38,7 @@
 #include "pipeline/texture/texture_object.h"
 #include "sim/framebuffer.h"
 #include "sim/geometry_memo.h"
+#include "sim/vertex_run_memo.h"
 #include "sim/gl_error.h"
 #include "sim/probe.h"
 #include "sim/raster_cache.h"
@@ -83,6 +84,7 @@ struct TextureUnitBinding {
 };
 
 inline constexpr int kMaxTextureUnits = 4;
+static_assert(kMaxTextureUnits == kClipTexUnits);
 
 struct WindowVertex;       // sim/draw_span.h
 // The draw path's window vertices: resized without a fill (every member is
@@ -283,6 +285,7 @@ class Context {
   void rasterPos4(double x, double y, double z, double w);
   bool in_begin_end() const { return in_begin_; }
   const std::array<double, 4>& current_color() const { return current_.color; }
+  const std::array<double, 4>& current_secondary_color() const { return current_.secondary; }
   const std::array<double, 4>& current_normal() const { return current_.normal; }
   const std::array<double, 4>& current_texcoord(int unit) const { return current_.texcoord[unit]; }
 
@@ -459,6 +462,20 @@ class Context {
     if (!on) geometry_memo_.clear();
   }
   const GeometryMemo& geometry_memo() const { return geometry_memo_; }
+  // The vertex-run memo (sim/vertex_run_memo.h, docs/performance.md 25.1): a
+  // run of vertex-data calls named `id` by the trace (equal ids: equal calls)
+  // that used the attributes as `usage` says. vertex_run_replay applies the
+  // run's recorded effect and returns true when the state it depends on equals
+  // the recording's; otherwise it returns false, the caller makes the calls and
+  // then calls vertex_run_record with the same id. With the fast paths only (on
+  // by default). Off: every run is called.
+  bool vertex_run_replay(std::uint64_t id, const VertexRunUsage& usage);
+  void vertex_run_record(std::uint64_t id);
+  void set_vertex_run_memo(bool on) {
+    vertex_run_memo_on_ = on;
+    if (!on) vertex_run_memo_.clear();
+  }
+  const VertexRunMemo& vertex_run_memo() const { return vertex_run_memo_; }
   bool fast_paths() const { return fast_paths_; }
   // glTexImage1D/2D of client data through the upload cache (sim/upload_cache.h;
   // with the fast paths only: off, every upload is computed).
@@ -587,14 +604,7 @@ class Context {
 
 
   // ==== [issue 4a] state ====
-  struct CurrentAttribs {  // GL121 §2.7 current values
-    std::array<double, 4> color{1, 1, 1, 1};
-    std::array<double, 4> secondary{0, 0, 0, 0};
-    std::array<double, 4> normal{0, 0, 1, 0};
-    std::array<std::array<double, 4>, kMaxTextureUnits> texcoord{
-        {{0, 0, 0, 1}, {0, 0, 0, 1}, {0, 0, 0, 1}, {0, 0, 0, 1}}};
-  };
-  CurrentAttribs current_;
+  CurrentAttribs current_;  // GL121 §2.7 current values (sim/vertex_run_memo.h)
   // The current colours clamped to [0, 1] as every vertex takes them (§2.13.6),
   // kept by color4 and secondaryColor3 (clamped once per colour, not per vertex).
   std::array<double, 4> current_color_clamped_{1, 1, 1, 1}, current_secondary_clamped_{0, 0, 0, 0};
@@ -752,6 +762,13 @@ class Context {
   RasterCache raster_cache_;
   bool geometry_memo_on_ = true;
   GeometryMemo geometry_memo_;
+  bool vertex_run_memo_on_ = true;
+  VertexRunMemo vertex_run_memo_;
+  struct VertexRunStart {  // a run being recorded: its id, entry state and first vertex
+    std::uint64_t id = 0;  // 0: none
+    CurrentAttribs entry;
+    std::size_t first = 0;
+  } vertex_run_start_;
   std::vector<glm::dvec4> object_scratch_;  // a glEnd's object positions, for the memo
   std::vector<TriangleRef> sequence_scratch_;  // a glEnd's triangles (one thread)
   std::uint64_t fast_runs_ = 0, split_batches_ = 0, split_triangles_ = 0, shared_vertex_draws_ = 0, batch_memo_uses_ = 0;

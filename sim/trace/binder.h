@@ -153,6 +153,12 @@ struct CommandDef {
   // (`errs_on_unit`: glMultiTexCoord). The replay runs consecutive ones
   // without the per-step bookkeeping (StepHot::quiet_run).
   bool never_errs = false, errs_on_unit = false;
+  // What a vertex-data call does to the current attributes, for the vertex-run
+  // memo (sim/vertex_run_memo.h): the VertexAttribBit it sets (with
+  // `per_unit`, the texture coordinates of the unit its first argument names),
+  // or whether it makes a vertex.
+  std::uint8_t sets_attribute = 0;
+  bool per_unit = false, makes_vertex = false;
   CheckFn check;         // optional load-time check of the evaluated arguments
   OutShapeFn out_shape;  // required when an argument is an OutImage
   CommandDef& pass_boundary() { is_pass = true; return *this; }
@@ -162,6 +168,9 @@ struct CommandDef {
   CommandDef& vertex_data_call() { vertex_data = true; return *this; }
   CommandDef& quiet() { never_errs = true; return *this; }
   CommandDef& quiet_with_unit() { errs_on_unit = true; return *this; }
+  CommandDef& sets(std::uint8_t attribute) { sets_attribute = attribute; return *this; }
+  CommandDef& sets_unit_coordinates() { sets_attribute = kAttribTexCoord0; per_unit = true; return *this; }
+  CommandDef& vertex() { makes_vertex = true; return *this; }
   CommandDef& writes_image(OutShapeFn f) { out_shape = std::move(f); return *this; }
   std::string signature() const;  // "glClearColor red green blue alpha"
 };

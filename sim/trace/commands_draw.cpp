@@ -15,32 +15,32 @@ void register_draw_commands(CommandTable& t) {
   t.bind("glEnd", &Context::end, {}).pass().vertex_data_call();
 
   // §2.7 vertex and current values.
-  t.bind("glVertex2f", &Context::vertex2, {Float32("x"), Float32("y")}).vertex_data_call().quiet();
-  t.bind("glVertex2d", &Context::vertex2, {Float("x"), Float("y")}).vertex_data_call().quiet();
-  t.bind("glVertex3f", &Context::vertex3, {Float32("x"), Float32("y"), Float32("z")}).vertex_data_call().quiet();
-  t.bind("glVertex3d", &Context::vertex3, {Float("x"), Float("y"), Float("z")}).vertex_data_call().quiet();
-  t.bind("glVertex4f", &Context::vertex4, {Float32("x"), Float32("y"), Float32("z"), Float32("w")}).vertex_data_call().quiet();
-  t.bind("glVertex4d", &Context::vertex4, {Float("x"), Float("y"), Float("z"), Float("w")}).vertex_data_call().quiet();
-  t.bind("glColor3f", &Context::color3, {Float32("red"), Float32("green"), Float32("blue")}).vertex_data_call().quiet();
-  t.bind("glColor3d", &Context::color3, {Float("red"), Float("green"), Float("blue")}).vertex_data_call().quiet();
-  t.bind("glColor4f", &Context::color4, {Float32("red"), Float32("green"), Float32("blue"), Float32("alpha")}).vertex_data_call().quiet();
-  t.bind("glColor4d", &Context::color4, {Float("red"), Float("green"), Float("blue"), Float("alpha")}).vertex_data_call().quiet();
-  t.bind("glSecondaryColor3f", &Context::secondaryColor3, {Float32("red"), Float32("green"), Float32("blue")}).vertex_data_call().quiet();
-  t.bind("glSecondaryColor3d", &Context::secondaryColor3, {Float("red"), Float("green"), Float("blue")}).vertex_data_call().quiet();
+  t.bind("glVertex2f", &Context::vertex2, {Float32("x"), Float32("y")}).vertex_data_call().quiet().vertex();
+  t.bind("glVertex2d", &Context::vertex2, {Float("x"), Float("y")}).vertex_data_call().quiet().vertex();
+  t.bind("glVertex3f", &Context::vertex3, {Float32("x"), Float32("y"), Float32("z")}).vertex_data_call().quiet().vertex();
+  t.bind("glVertex3d", &Context::vertex3, {Float("x"), Float("y"), Float("z")}).vertex_data_call().quiet().vertex();
+  t.bind("glVertex4f", &Context::vertex4, {Float32("x"), Float32("y"), Float32("z"), Float32("w")}).vertex_data_call().quiet().vertex();
+  t.bind("glVertex4d", &Context::vertex4, {Float("x"), Float("y"), Float("z"), Float("w")}).vertex_data_call().quiet().vertex();
+  t.bind("glColor3f", &Context::color3, {Float32("red"), Float32("green"), Float32("blue")}).vertex_data_call().quiet().sets(kAttribColor);
+  t.bind("glColor3d", &Context::color3, {Float("red"), Float("green"), Float("blue")}).vertex_data_call().quiet().sets(kAttribColor);
+  t.bind("glColor4f", &Context::color4, {Float32("red"), Float32("green"), Float32("blue"), Float32("alpha")}).vertex_data_call().quiet().sets(kAttribColor);
+  t.bind("glColor4d", &Context::color4, {Float("red"), Float("green"), Float("blue"), Float("alpha")}).vertex_data_call().quiet().sets(kAttribColor);
+  t.bind("glSecondaryColor3f", &Context::secondaryColor3, {Float32("red"), Float32("green"), Float32("blue")}).vertex_data_call().quiet().sets(kAttribSecondary);
+  t.bind("glSecondaryColor3d", &Context::secondaryColor3, {Float("red"), Float("green"), Float("blue")}).vertex_data_call().quiet().sets(kAttribSecondary);
   t.alias("glSecondaryColor3fEXT", "glSecondaryColor3f");
   t.alias("glSecondaryColor3dEXT", "glSecondaryColor3d");
-  t.bind("glTexCoord2f", &Context::texCoord2, {Float32("s"), Float32("t")}).vertex_data_call().quiet();
-  t.bind("glTexCoord2d", &Context::texCoord2, {Float("s"), Float("t")}).vertex_data_call().quiet();
-  t.bind("glTexCoord4f", &Context::texCoord4, {Float32("s"), Float32("t"), Float32("r"), Float32("q")}).vertex_data_call().quiet();
-  t.bind("glTexCoord4d", &Context::texCoord4, {Float("s"), Float("t"), Float("r"), Float("q")}).vertex_data_call().quiet();
-  t.bind("glMultiTexCoord2f", &Context::multiTexCoord2, {Enum("texture"), Float32("s"), Float32("t")}).vertex_data_call().quiet_with_unit();
-  t.bind("glMultiTexCoord2d", &Context::multiTexCoord2, {Enum("texture"), Float("s"), Float("t")}).vertex_data_call().quiet_with_unit();
-  t.bind("glMultiTexCoord4f", &Context::multiTexCoord4, {Enum("texture"), Float32("s"), Float32("t"), Float32("r"), Float32("q")}).vertex_data_call().quiet_with_unit();
-  t.bind("glMultiTexCoord4d", &Context::multiTexCoord4, {Enum("texture"), Float("s"), Float("t"), Float("r"), Float("q")}).vertex_data_call().quiet_with_unit();
+  t.bind("glTexCoord2f", &Context::texCoord2, {Float32("s"), Float32("t")}).vertex_data_call().quiet().sets(kAttribTexCoord0);
+  t.bind("glTexCoord2d", &Context::texCoord2, {Float("s"), Float("t")}).vertex_data_call().quiet().sets(kAttribTexCoord0);
+  t.bind("glTexCoord4f", &Context::texCoord4, {Float32("s"), Float32("t"), Float32("r"), Float32("q")}).vertex_data_call().quiet().sets(kAttribTexCoord0);
+  t.bind("glTexCoord4d", &Context::texCoord4, {Float("s"), Float("t"), Float("r"), Float("q")}).vertex_data_call().quiet().sets(kAttribTexCoord0);
+  t.bind("glMultiTexCoord2f", &Context::multiTexCoord2, {Enum("texture"), Float32("s"), Float32("t")}).vertex_data_call().quiet_with_unit().sets_unit_coordinates();
+  t.bind("glMultiTexCoord2d", &Context::multiTexCoord2, {Enum("texture"), Float("s"), Float("t")}).vertex_data_call().quiet_with_unit().sets_unit_coordinates();
+  t.bind("glMultiTexCoord4f", &Context::multiTexCoord4, {Enum("texture"), Float32("s"), Float32("t"), Float32("r"), Float32("q")}).vertex_data_call().quiet_with_unit().sets_unit_coordinates();
+  t.bind("glMultiTexCoord4d", &Context::multiTexCoord4, {Enum("texture"), Float("s"), Float("t"), Float("r"), Float("q")}).vertex_data_call().quiet_with_unit().sets_unit_coordinates();
   for (const char* n : {"glMultiTexCoord2f", "glMultiTexCoord2d", "glMultiTexCoord4f", "glMultiTexCoord4d"})
     t.alias(std::string(n) + "ARB", n);
-  t.bind("glNormal3f", &Context::normal3, {Float32("nx"), Float32("ny"), Float32("nz")}).vertex_data_call().quiet();
-  t.bind("glNormal3d", &Context::normal3, {Float("nx"), Float("ny"), Float("nz")}).vertex_data_call().quiet();
+  t.bind("glNormal3f", &Context::normal3, {Float32("nx"), Float32("ny"), Float32("nz")}).vertex_data_call().quiet().sets(kAttribNormal);
+  t.bind("glNormal3d", &Context::normal3, {Float("nx"), Float("ny"), Float("nz")}).vertex_data_call().quiet().sets(kAttribNormal);
 
   // §2.10.1 viewport and depth range (GLclampd), §2.13.7 shading.
   t.bind("glViewport", &Context::viewport, {Int("x"), Int("y"), Int("width"), Int("height")});

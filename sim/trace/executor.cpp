@@ -61,8 +61,13 @@ class Runner {
       // Step only where a call needs more than its packed scalar arguments, or
       // for a message (docs/performance.md 16).
       std::vector<StepHot> own;  // (a Program not made by the loader)
-      if (p_.hot.size() != p_.steps.size()) own = hot_steps(p_);
+      std::vector<VertexRun> own_runs;
+      if (p_.hot.size() != p_.steps.size()) {
+        own = hot_steps(p_);
+        own_runs = vertex_runs(p_, own);
+      }
       const std::vector<StepHot>& hot = own.empty() ? p_.hot : own;
+      const std::vector<VertexRun>& runs = own.empty() ? p_.vertex_runs : own_runs;
       // Quiet runs (StepHot::quiet_run) cannot record an error on a Context with
       // at least the program's texture units.
       const bool quiet_runs = ctx.profile().texture_units >= p_.profile.texture_units;
@@ -76,7 +81,13 @@ class Runner {
           if (!r_.ok) break;
           const std::size_t n = h.quiet_run;
           ctx.set_call_site_ref(p_.steps[k + n - 1].where);  // (where the per-step loop leaves it)
-          for (const StepHot* q = &h; q != &h + n; ++q) q->packed_call(ctx, p_.packed.data() + q->packed_at, q->def->method);
+          // A run of a class (StepHot::run_class) is replayed from the vertex-run
+          // memo when its state allows (Context::vertex_run_replay).
+          const VertexRun* run = h.run_class != 0 && h.run_class <= runs.size() ? &runs[h.run_class - 1] : nullptr;
+          if (!run || !ctx.vertex_run_replay(run->id, run->usage)) {
+            for (const StepHot* q = &h; q != &h + n; ++q) q->packed_call(ctx, p_.packed.data() + q->packed_at, q->def->method);
+            if (run) ctx.vertex_run_record(run->id);
+          }
           r_.steps += static_cast<int>(n);
           k += n - 1;
           collect_errors(ctx);

@@ -119,6 +119,7 @@ class Loader {
       for (const ArgValue& v : st.args) prog_.packed.push_back({v.kind, v.i, v.f});
     }
     prog_.hot = hot_steps(prog_);
+    prog_.vertex_runs = vertex_runs(prog_, prog_.hot);
     return std::move(prog_);
   }
 

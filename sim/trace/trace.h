@@ -68,6 +68,17 @@ struct StepHot {
   // (CommandDef::never_errs, or errs_on_unit with a unit of the profile): the
   // replay calls them one after the other without the per-step bookkeeping.
   std::uint16_t quiet_run = 0;
+  // A quiet run's first step: its class in Program::vertex_runs, plus one (0:
+  // not memoized; vertex_runs).
+  std::uint32_t run_class = 0;
+};
+static_assert(sizeof(StepHot) <= 32);
+
+// The vertex-run memo's name for a class of equal quiet runs (unique in the
+// process) and how their calls use the current attributes (sim/vertex_run_memo.h).
+struct VertexRun {
+  std::uint64_t id = 0;
+  VertexRunUsage usage;
 };
 
 struct Param {
@@ -98,6 +109,7 @@ struct Program {
   std::vector<Step> steps;
   std::vector<StepHot> hot;        // one per step (hot_steps), made when loaded
   std::vector<PackedArg> packed;   // the calls' scalar arguments, in step order (Step::packed_at)
+  std::vector<VertexRun> vertex_runs;  // StepHot::run_class (vertex_runs), made when loaded
   std::vector<std::string> files;  // every trace file read, in order
   // The PackedArg of step s's arguments, or null (not a call, or not packed).
   const PackedArg* packed_args(const Step& s) const {
@@ -117,6 +129,9 @@ struct LoadOptions {
 
 // The StepHot of each of p's steps.
 std::vector<StepHot> hot_steps(const Program& p);
+// The classes of p's quiet runs of at least a few calls (runs of equal calls
+// share one), each run's first StepHot::run_class set (sim/trace/vertex_runs.cpp).
+std::vector<VertexRun> vertex_runs(const Program& p, std::vector<StepHot>& hot);
 
 // Throws TraceError.
 Program load_trace_file(const std::string& path, const LoadOptions& options);

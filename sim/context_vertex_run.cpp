@@ -1,0 +1,88 @@
+// The vertex-run memo (sim/vertex_run_memo.h, docs/performance.md 25.1): a run
+// of vertex-data calls replayed from its recording.
+#include <cstring>
+
+#include "sim/context.h"
+
+namespace ffsim {
+
+namespace {
+
+template <class T>
+bool same_bits(const T& a, const T& b) {  // (−0 and +0 differ: the recording's inputs, bit for bit)
+  return std::memcmp(&a, &b, sizeof(T)) == 0;
+}
+
+// Attribute k of a, as VertexAttribBit numbers them (color, secondary, normal, texcoord 0..).
+const std::array<double, 4>& attribute(const CurrentAttribs& a, int k) {
+  return k == 0 ? a.color : k == 1 ? a.secondary : k == 2 ? a.normal : a.texcoord[static_cast<std::size_t>(k - 3)];
+}
+std::array<double, 4>& attribute(CurrentAttribs& a, int k) {
+  return const_cast<std::array<double, 4>&>(attribute(std::as_const(a), k));
+}
+constexpr int kAttributes = 3 + kClipTexUnits;
+
+}  // namespace
+
+bool Context::vertex_run_replay(std::uint64_t id, const VertexRunUsage& usage) {
+  vertex_run_start_.id = 0;
+  if (!fast_paths_ || !vertex_run_memo_on_ || id == 0) return false;
+  const VertexRunMemo::Record* r = vertex_run_memo_.find(id);
+  bool same = r && r->in_begin == in_begin_;
+  for (int k = 0; k < kAttributes && same; ++k)
+    if (usage.read_first & (1u << k)) same = same_bits(attribute(r->entry, k), attribute(current_, k));
+  // The written coordinates of the recorded vertices went through these matrices
+  // (the matrices cannot change within the run: glMatrixMode and the matrix
+  // calls are not vertex data).
+  const bool made_vertices = in_begin_ && usage.has_vertex;
+  for (int u = 0; u < kMaxTextureUnits && same && made_vertices; ++u)
+    if (usage.written & texcoord_bit(u)) same = same_bits(r->texture_matrix[u], texture_matrix_[u].top());
+  if (!same) {
+    ++vertex_run_memo_.misses;
+    vertex_run_start_ = {id, current_, begin_count_};
+    return false;
+  }
+  ++vertex_run_memo_.hits;
+  if (in_begin_ && !r->vertices.empty()) {
+    const std::size_t n = r->vertices.size();
+    if (begin_vertices_.size() < begin_count_ + n) begin_vertices_.resize(begin_count_ + n);  // (every slot copied below)
+    ClipVertex* out = begin_vertices_.data() + begin_count_;
+    std::memcpy(static_cast<void*>(out), r->vertices.data(), n * sizeof(ClipVertex));
+    // The attributes the run does not write: each vertex took the current value
+    // (vertex_attributes), the same for all of them.
+    if (!(usage.written & kAttribColor))
+      for (std::size_t i = 0; i < n; ++i) out[i].color = current_color_clamped_;
+    if (!(usage.written & kAttribSecondary))
+      for (std::size_t i = 0; i < n; ++i) out[i].secondary = current_secondary_clamped_;
+    for (int u = 0; u < profile_.texture_units; ++u) {
+      if (usage.written & texcoord_bit(u)) continue;
+      const auto& tc = current_.texcoord[u];
+      const glm::dvec4 t = texture_matrix_[u].top() * glm::dvec4(tc[0], tc[1], tc[2], tc[3]);
+      for (std::size_t i = 0; i < n; ++i) out[i].texcoord[u] = t;
+    }
+    begin_count_ += n;
+  }
+  for (int k = 0; k < kAttributes; ++k)
+    if (usage.written & (1u << k)) attribute(current_, k) = attribute(r->exit, k);
+  if (usage.written & kAttribColor) current_color_clamped_ = r->exit_color_clamped;
+  if (usage.written & kAttribSecondary) current_secondary_clamped_ = r->exit_secondary_clamped;
+  return true;
+}
+
+void Context::vertex_run_record(std::uint64_t id) {
+  if (vertex_run_start_.id != id || id == 0 || begin_count_ < vertex_run_start_.first) return;
+  vertex_run_start_.id = 0;
+  const std::size_t first = vertex_run_start_.first;
+  const std::size_t n = in_begin_ ? begin_count_ - first : 0;
+  VertexRunMemo::Record& r = vertex_run_memo_.insert(id, n);
+  r.in_begin = in_begin_;
+  r.entry = vertex_run_start_.entry;
+  for (int u = 0; u < kMaxTextureUnits; ++u) r.texture_matrix[u] = texture_matrix_[u].top();
+  r.exit = current_;
+  r.exit_color_clamped = current_color_clamped_;
+  r.exit_secondary_clamped = current_secondary_clamped_;
+  r.vertices.assign(begin_vertices_.begin() + static_cast<std::ptrdiff_t>(first),
+                    begin_vertices_.begin() + static_cast<std::ptrdiff_t>(first + n));
+}
+
+}  // namespace ffsim

@@ -1,0 +1,99 @@
+// The vertex-run memo (docs/performance.md 25.1): the effect of a run of
+// vertex-data calls (glColor, glSecondaryColor, glNormal, glTexCoord,
+// glMultiTexCoord, glVertex; none can record an error), recorded the first time
+// and replayed when the same calls run again under the same state. The terrain of
+// the paper's traces is drawn several times a frame, each time by the same
+// 1860 vertices and 3720 texture-coordinate calls: a replay copies the recorded
+// vertices instead of calling, converting and transforming again.
+//
+// A run's effect is a pure function of its calls (the trace names runs of equal
+// calls, argument bits included, by one id: sim/trace/vertex_runs.cpp), of the
+// current attributes it reads (GL121 §2.7), of the texture matrices of the units
+// whose coordinates it sets, and of whether it lies inside glBegin/glEnd (outside,
+// a vertex has no effect). The trace also says how the run uses each attribute
+// (VertexRunUsage), which decides what a replay compares and what it takes from
+// the current state instead of the record:
+//  - not written by the run: every vertex takes the current value (the current
+//    colour clamped, §2.13.6; a coordinate through the current texture matrix,
+//    §2.10.2), and the value stays; a replay fills it from the current state,
+//    so passes that differ only in their glColor share one record.
+//  - written before any vertex reads it: the vertices hold the run's own values
+//    (and for coordinates the texture matrix, compared); the exit value is the
+//    record's.
+//  - written after a vertex has read it: as above, and the entry value is
+//    compared too (the vertices before the write hold it).
+#pragma once
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "pipeline/geometry/clip.h"
+
+namespace ffsim {
+
+struct CurrentAttribs {  // GL121 §2.7 current values
+  std::array<double, 4> color{1, 1, 1, 1};
+  std::array<double, 4> secondary{0, 0, 0, 0};
+  std::array<double, 4> normal{0, 0, 1, 0};
+  std::array<std::array<double, 4>, kClipTexUnits> texcoord{{{0, 0, 0, 1}, {0, 0, 0, 1}, {0, 0, 0, 1}, {0, 0, 0, 1}}};
+};
+
+// The current attributes, as bits of VertexRunUsage's masks.
+enum VertexAttribBit : std::uint8_t {
+  kAttribColor = 1u << 0,
+  kAttribSecondary = 1u << 1,
+  kAttribNormal = 1u << 2,
+  kAttribTexCoord0 = 1u << 3,  // unit u: kAttribTexCoord0 << u
+};
+constexpr std::uint8_t texcoord_bit(int unit) { return static_cast<std::uint8_t>(kAttribTexCoord0 << unit); }
+
+struct VertexRunUsage {
+  std::uint8_t written = 0;     // attributes some call of the run sets
+  std::uint8_t read_first = 0;  // written attributes a vertex reads before the run's first write of them
+  bool has_vertex = false;      // the run calls glVertex
+};
+
+class VertexRunMemo {
+ public:
+  // At most this many vertices are kept; a record beyond it empties the memo.
+  static constexpr std::size_t kMaxVertices = std::size_t{1} << 18;
+
+  struct Record {
+    bool in_begin = false;
+    CurrentAttribs entry;  // compared: the read_first attributes
+    std::array<glm::dmat4, kClipTexUnits> texture_matrix{};  // compared: the written units'
+    CurrentAttribs exit;   // taken: the written attributes
+    std::array<double, 4> exit_color_clamped{}, exit_secondary_clamped{};
+    std::vector<ClipVertex> vertices;  // inside glBegin/glEnd: the vertices the run made
+  };
+
+  const Record* find(std::uint64_t id) const {
+    const auto it = records_.find(id);
+    return it == records_.end() ? nullptr : &it->second;
+  }
+  // A record for `id` (replacing any), its vertices empty.
+  Record& insert(std::uint64_t id, std::size_t vertices) {
+    if (vertices_ + vertices > kMaxVertices) clear();
+    Record& r = records_[id];
+    vertices_ -= r.vertices.size();
+    r.vertices.clear();
+    vertices_ += vertices;
+    return r;
+  }
+  void clear() {
+    records_.clear();
+    vertices_ = 0;
+  }
+  std::size_t size() const { return records_.size(); }
+  std::uint64_t hits = 0, misses = 0;
+
+ private:
+  std::unordered_map<std::uint64_t, Record> records_;
+  std::size_t vertices_ = 0;
+};
+
+}  // namespace ffsim
