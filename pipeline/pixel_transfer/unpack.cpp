@@ -185,6 +185,26 @@ RgbaImage<T> unpack_rgba(const void* data, int width, int height, GLenum format,
       const auto c = static_cast<unsigned char>(b);
       real[static_cast<std::size_t>(b)] = element_to_real<T>(read_element(&c, type, false), type);
     }
+    // RGB and RGBA (each element to its own slot, alpha 1 where there is none):
+    // the same values without the defaults written first.
+    const bool rgb_order = !fm.luminance && fm.n >= 3 && fm.slot[0] == 0 && fm.slot[1] == 1 && fm.slot[2] == 2 &&
+                           (fm.n == 3 || fm.slot[3] == 3);
+    if (rgb_order) {
+      for (int y = 0; y < height; ++y) {
+        const unsigned char* g = base + L.offset(0, y);
+        T* o = img.at(0, y);
+        if (fm.n == 4) {
+          for (int x = 0; x < width; ++x, g += 4, o += 4)
+            for (int k = 0; k < 4; ++k) o[k] = real[g[k]];
+        } else {
+          for (int x = 0; x < width; ++x, g += 3, o += 4) {
+            for (int k = 0; k < 3; ++k) o[k] = real[g[k]];
+            o[3] = T(1);
+          }
+        }
+      }
+      return img;
+    }
     for (int y = 0; y < height; ++y) {
       const unsigned char* g = base + L.offset(0, y);  // (group x at g + x·n)
       for (int x = 0; x < width; ++x, g += fm.n) {
