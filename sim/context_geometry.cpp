@@ -192,8 +192,32 @@ void Context::end() {
     }
     batch_area_ += batch_memo->area;
   }
+  // Shared vertices and triangle primitives: each triangle straight to the batch
+  // or the sequence, as draw_polygon and shared_fan give it for a 3-vertex polygon.
+  const bool direct = shared && !from_memo &&
+                      (begin_mode_ == gl::TRIANGLES || begin_mode_ == gl::TRIANGLE_STRIP || begin_mode_ == gl::TRIANGLE_FAN);
+  if (direct) {
+    auto triangle = [&](std::size_t a, std::size_t b, std::size_t c) {
+      if (ds.bands) {
+        batch_triangle(shared_base + a, shared_base + b, shared_base + c, ds);
+      } else {
+        const WindowVertex* w = window_scratch_.data() + shared_base;  // (0: one glEnd at a time)
+        sequence_scratch_.push_back({w + a, w + b, w + c});
+      }
+    };
+    if (begin_mode_ == gl::TRIANGLES) {
+      for (std::size_t i = 0; i + 2 < n; i += 3) triangle(i, i + 1, i + 2);
+    } else if (begin_mode_ == gl::TRIANGLE_STRIP) {
+      for (std::size_t i = 0; i + 2 < n; ++i) {
+        if (i % 2 == 0) triangle(i, i + 1, i + 2);
+        else triangle(i + 1, i, i + 2);  // keep the strip's orientation
+      }
+    } else {
+      for (std::size_t i = 1; i + 1 < n; ++i) triangle(0, i, i + 1);
+    }
+  }
   // Provoking vertex for flat shading (GL121 Table 2.9, 0-based here).
-  switch (from_memo ? GLenum{0} : begin_mode_) {
+  switch (from_memo || direct ? GLenum{0} : begin_mode_) {
     case gl::TRIANGLES:
       for (std::size_t i = 0; i + 2 < n; i += 3) draw_polygon({i, i + 1, i + 2}, 2);
       break;
