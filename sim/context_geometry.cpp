@@ -126,8 +126,8 @@ void Context::end() {
       for (std::size_t i = 0; i < n; ++i) {
         w[i].p = geo->p[i];
         w[i].depth = ds.has_depth ? geo->depth[i] : 0;
-        window_attributes(v[i], geo->iw[i], ds, w[i]);
       }
+      window_attributes_n(v.data(), geo->iw.data(), n, ds, w);
       geometry = geo->serial;
       entry = geo;
     } else if (!memo) {

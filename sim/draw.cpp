@@ -279,6 +279,34 @@ void Context::window_attributes(const ClipVertex& c, double iw, const DrawSetup&
     w.tcw[u] = {c.texcoord[u].x * iw, c.texcoord[u].y * iw, c.texcoord[u].w * iw};
 }
 
+void Context::window_attributes_n(const ClipVertex* c, const double* iw, std::size_t n, const DrawSetup& ds,
+                                  WindowVertex* w) const {
+  if (!fast_paths_) {
+    for (std::size_t i = 0; i < n; ++i) window_attributes(c[i], iw[i], ds, w[i]);
+    return;
+  }
+  // As window_attributes: a memo of another format is not used (dropped here,
+  // once), a colour equal bit for bit to the memo's takes its conversion.
+  const ColorFormat& f = ds.st->color;
+  for (ColorMemo& m : color_memo_)
+    if (m.format.arith != f.arith || m.format.bits != f.bits) m.valid = false;
+  ColorMemo &pm = color_memo_[0], &sm = color_memo_[1];
+  for (std::size_t i = 0; i < n; ++i) {
+    const ClipVertex& v = c[i];
+    if (!pm.valid || std::memcmp(pm.in.data(), v.color.data(), sizeof(double) * 4) != 0)
+      pm = {true, f, v.color, rgba_from_values(v.color, f)};
+    if (!sm.valid || std::memcmp(sm.in.data(), v.secondary.data(), sizeof(double) * 4) != 0)
+      sm = {true, f, v.secondary, rgba_from_values(v.secondary, f)};
+    WindowVertex& o = w[i];
+    o.color_code = pm.out.code;
+    o.secondary_code = sm.out.code;
+    o.color = pm.out.value;
+    o.secondary = sm.out.value;
+    for (int u = 0; u < kMaxTextureUnits; ++u)
+      o.tcw[u] = {v.texcoord[u].x * iw[i], v.texcoord[u].y * iw[i], v.texcoord[u].w * iw[i]};
+  }
+}
+
 void Context::count_written(int band, std::uint64_t fragments, std::uint64_t fast_runs) {
   if (band < 0) {
     fragments_written_ += fragments;
