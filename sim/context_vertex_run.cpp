@@ -1,5 +1,6 @@
 // The vertex-run memo (sim/vertex_run_memo.h, docs/performance.md 25.1): a run
 // of vertex-data calls replayed from its recording.
+#include <algorithm>
 #include <cstring>
 
 #include "sim/context.h"
@@ -81,8 +82,7 @@ void Context::vertex_run_record(std::uint64_t id) {
   r.exit = current_;
   r.exit_color_clamped = current_color_clamped_;
   r.exit_secondary_clamped = current_secondary_clamped_;
-  r.vertices.assign(begin_vertices_.begin() + static_cast<std::ptrdiff_t>(first),
-                    begin_vertices_.begin() + static_cast<std::ptrdiff_t>(first + n));
+  std::copy_n(begin_vertices_.begin() + static_cast<std::ptrdiff_t>(first), n, r.vertices.begin());
 }
 
 }  // namespace ffsim

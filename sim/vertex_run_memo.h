@@ -75,13 +75,16 @@ class VertexRunMemo {
     const auto it = records_.find(id);
     return it == records_.end() ? nullptr : &it->second;
   }
-  // A record for `id` (replacing any), its vertices empty.
-  Record& insert(std::uint64_t id, std::size_t vertices) {
-    if (vertices_ + vertices > kMaxVertices) clear();
+  // A record for `id` (replacing any) with room for n vertices, which the caller fills.
+  Record& insert(std::uint64_t id, std::size_t n) {
+    if (const auto old = records_.find(id); old != records_.end()) {
+      vertices_ -= old->second.vertices.size();
+      records_.erase(old);
+    }
+    if (vertices_ + n > kMaxVertices) clear();
     Record& r = records_[id];
-    vertices_ -= r.vertices.size();
-    r.vertices.clear();
-    vertices_ += vertices;
+    r.vertices.resize(n);
+    vertices_ += n;
     return r;
   }
   void clear() {

@@ -1,7 +1,7 @@
 // Names the runs of quiet vertex-data calls for the vertex-run memo
 // (sim/vertex_run_memo.h, docs/performance.md 25.1): runs of equal calls
-// (the same commands with the same argument bits) share an id, unique to the
-// program, and each id carries how its calls use the current attributes.
+// (the same commands with the same argument bits) share an id, unique in the
+// process, and each id carries how its calls use the current attributes.
 #include <atomic>
 #include <bit>
 #include <unordered_map>

@@ -283,3 +283,26 @@ TEST_CASE("vertex runs: random traces of repeated runs == memo off == per-fragme
     CHECK(misses > 0);
   }
 }
+
+TEST_CASE("vertex runs: the memo keeps at most kMaxVertices vertices; a record replaces its id's") {
+  VertexRunMemo m;
+  const std::size_t per_record = 1000;
+  std::size_t most = 0;
+  for (std::uint64_t id = 1; id <= VertexRunMemo::kMaxVertices / per_record + 10; ++id) {
+    CHECK(m.insert(id, per_record).vertices.size() == per_record);
+    most = std::max(most, m.size());
+    CHECK(m.find(id) != nullptr);
+  }
+  CHECK(most * per_record <= VertexRunMemo::kMaxVertices);
+  CHECK(m.size() < most);  // emptied once
+  // Recording an id again replaces its record and its count.
+  VertexRunMemo r;
+  for (int k = 0; k < 3; ++k) r.insert(7, VertexRunMemo::kMaxVertices / 2);
+  CHECK(r.size() == 1);
+  r.insert(8, VertexRunMemo::kMaxVertices / 2);
+  CHECK(r.size() == 2);  // (7's half and 8's half: within the bound, nothing emptied)
+  CHECK(r.find(7) != nullptr);
+  r.insert(9, 1);
+  CHECK(r.size() == 1);  // one vertex more than the bound: emptied first
+  CHECK(r.find(9) != nullptr);
+}
