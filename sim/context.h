@@ -669,8 +669,8 @@ class Context {
   // (and iw = 1 / w_c), and the colour codes and texture coordinates over w.
   void window_position(const glm::dvec4& clip, double iw, const DrawSetup& ds, WindowVertex& w) const;
   void window_attributes(const ClipVertex& c, double iw, const DrawSetup& ds, WindowVertex& w) const;
-  // window_attributes of n vertices (a glEnd's shared vertices, the fast paths
-  // on): the colour format checked once, not per vertex.
+  // window_attributes of n vertices (a glEnd's shared vertices): the colour
+  // format checked once, not per vertex.
   void window_attributes_n(const ClipVertex* c, const double* iw, std::size_t n, const DrawSetup& ds,
                            WindowVertex* w) const;
   // The rows [y0, y1) (relative to the viewport corner) of one triangle, shaded

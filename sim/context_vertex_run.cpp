@@ -1,6 +1,5 @@
 // The vertex-run memo (sim/vertex_run_memo.h, docs/performance.md 25.1): a run
 // of vertex-data calls replayed from its recording.
-#include <algorithm>
 #include <cstring>
 
 #include "sim/context.h"
@@ -39,11 +38,11 @@ bool Context::vertex_run_replay(std::uint64_t id, const VertexRunUsage& usage) {
   for (int u = 0; u < kMaxTextureUnits && same && made_vertices; ++u)
     if (usage.written & texcoord_bit(u)) same = same_bits(r->texture_matrix[u], texture_matrix_[u].top());
   if (!same) {
-    ++vertex_run_memo_.misses;
+    vertex_run_memo_.count(false);
     vertex_run_start_ = {id, current_, begin_count_};
     return false;
   }
-  ++vertex_run_memo_.hits;
+  vertex_run_memo_.count(true);
   if (in_begin_ && !r->vertices.empty()) {
     const std::size_t n = r->vertices.size();
     if (begin_vertices_.size() < begin_count_ + n) begin_vertices_.resize(begin_count_ + n);  // (every slot copied below)
@@ -75,14 +74,13 @@ void Context::vertex_run_record(std::uint64_t id) {
   vertex_run_start_.id = 0;
   const std::size_t first = vertex_run_start_.first;
   const std::size_t n = in_begin_ ? begin_count_ - first : 0;
-  VertexRunMemo::Record& r = vertex_run_memo_.insert(id, n);
+  VertexRunMemo::Record& r = vertex_run_memo_.insert(id, begin_vertices_.data() + first, n);
   r.in_begin = in_begin_;
   r.entry = vertex_run_start_.entry;
   for (int u = 0; u < kMaxTextureUnits; ++u) r.texture_matrix[u] = texture_matrix_[u].top();
   r.exit = current_;
   r.exit_color_clamped = current_color_clamped_;
   r.exit_secondary_clamped = current_secondary_clamped_;
-  std::copy_n(begin_vertices_.begin() + static_cast<std::ptrdiff_t>(first), n, r.vertices.begin());
 }
 
 }  // namespace ffsim

@@ -259,49 +259,32 @@ void Context::window_position(const glm::dvec4& clip, double iw, const DrawSetup
 }
 
 void Context::window_attributes(const ClipVertex& c, double iw, const DrawSetup& ds, WindowVertex& w) const {
-  // Vertex colours into the fragment colour format (§1.2 codes, or binary32/64).
-  // A colour equal bit for bit to the previous vertex's (in the same format)
-  // converts to the same codes: with the fast paths, the last conversion of each
-  // is kept (without, every vertex converts: the reference the tests compare with).
-  auto convert = [&](const std::array<double, 4>& v, ColorMemo& m) {
-    const ColorFormat& f = ds.st->color;
-    if (!fast_paths_ || !m.valid || m.format.arith != f.arith || m.format.bits != f.bits ||
-        std::memcmp(m.in.data(), v.data(), sizeof(double) * 4) != 0)
-      m = {true, f, v, rgba_from_values(v, f)};
-    return m.out;
-  };
-  const Rgba pc = convert(c.color, color_memo_[0]), sc = convert(c.secondary, color_memo_[1]);
-  w.color_code = pc.code;
-  w.secondary_code = sc.code;
-  w.color = pc.value;
-  w.secondary = sc.value;
-  for (int u = 0; u < kMaxTextureUnits; ++u)
-    w.tcw[u] = {c.texcoord[u].x * iw, c.texcoord[u].y * iw, c.texcoord[u].w * iw};
+  window_attributes_n(&c, &iw, 1, ds, &w);
 }
 
 void Context::window_attributes_n(const ClipVertex* c, const double* iw, std::size_t n, const DrawSetup& ds,
                                   WindowVertex* w) const {
-  if (!fast_paths_) {
-    for (std::size_t i = 0; i < n; ++i) window_attributes(c[i], iw[i], ds, w[i]);
-    return;
-  }
-  // As window_attributes: a memo of another format is not used (dropped here,
-  // once), a colour equal bit for bit to the memo's takes its conversion.
+  // Vertex colours into the fragment colour format (§1.2 codes, or binary32/64).
+  // A colour equal bit for bit to the previous vertex's (in the same format)
+  // converts to the same codes: with the fast paths, the last conversion of each
+  // is kept (a memo of another format is dropped, once for the n vertices);
+  // without, every vertex converts (the reference the tests compare with).
   const ColorFormat& f = ds.st->color;
   for (ColorMemo& m : color_memo_)
-    if (m.format.arith != f.arith || m.format.bits != f.bits) m.valid = false;
-  ColorMemo &pm = color_memo_[0], &sm = color_memo_[1];
+    if (!fast_paths_ || m.format.arith != f.arith || m.format.bits != f.bits) m.valid = false;
+  auto convert = [&](const std::array<double, 4>& v, ColorMemo& m) -> const Rgba& {
+    if (!m.valid || std::memcmp(m.in.data(), v.data(), sizeof(double) * 4) != 0)
+      m = {fast_paths_, f, v, rgba_from_values(v, f)};
+    return m.out;
+  };
   for (std::size_t i = 0; i < n; ++i) {
     const ClipVertex& v = c[i];
-    if (!pm.valid || std::memcmp(pm.in.data(), v.color.data(), sizeof(double) * 4) != 0)
-      pm = {true, f, v.color, rgba_from_values(v.color, f)};
-    if (!sm.valid || std::memcmp(sm.in.data(), v.secondary.data(), sizeof(double) * 4) != 0)
-      sm = {true, f, v.secondary, rgba_from_values(v.secondary, f)};
+    const Rgba &pc = convert(v.color, color_memo_[0]), &sc = convert(v.secondary, color_memo_[1]);
     WindowVertex& o = w[i];
-    o.color_code = pm.out.code;
-    o.secondary_code = sm.out.code;
-    o.color = pm.out.value;
-    o.secondary = sm.out.value;
+    o.color_code = pc.code;
+    o.secondary_code = sc.code;
+    o.color = pc.value;
+    o.secondary = sc.value;
     for (int u = 0; u < kMaxTextureUnits; ++u)
       o.tcw[u] = {v.texcoord[u].x * iw[i], v.texcoord[u].y * iw[i], v.texcoord[u].w * iw[i]};
   }

@@ -75,15 +75,16 @@ class VertexRunMemo {
     const auto it = records_.find(id);
     return it == records_.end() ? nullptr : &it->second;
   }
-  // A record for `id` (replacing any) with room for n vertices, which the caller fills.
-  Record& insert(std::uint64_t id, std::size_t n) {
+  // A record for `id` (replacing any) holding the n vertices at `vertices`; the
+  // caller fills in the rest.
+  Record& insert(std::uint64_t id, const ClipVertex* vertices, std::size_t n) {
     if (const auto old = records_.find(id); old != records_.end()) {
       vertices_ -= old->second.vertices.size();
       records_.erase(old);
     }
     if (vertices_ + n > kMaxVertices) clear();
     Record& r = records_[id];
-    r.vertices.resize(n);
+    r.vertices.assign(vertices, vertices + n);
     vertices_ += n;
     return r;
   }
@@ -92,9 +93,13 @@ class VertexRunMemo {
     vertices_ = 0;
   }
   std::size_t size() const { return records_.size(); }
-  std::uint64_t hits = 0, misses = 0;
+  // Replays, and runs recorded instead (counted by the Context, which compares).
+  void count(bool hit) { ++(hit ? hits_ : misses_); }
+  std::uint64_t hits() const { return hits_; }
+  std::uint64_t misses() const { return misses_; }
 
  private:
+  std::uint64_t hits_ = 0, misses_ = 0;
   std::unordered_map<std::uint64_t, Record> records_;
   std::size_t vertices_ = 0;
 };

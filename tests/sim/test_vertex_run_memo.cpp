@@ -49,8 +49,8 @@ Outcome run(const Program& p, int mode) {  // 0: memo on, 1: memo off, 2: per-fr
   o.secondary = c.current_secondary_color();
   o.normal = c.current_normal();
   for (int u = 0; u < p.profile.texture_units; ++u) o.texcoord.push_back(c.current_texcoord(u));
-  o.hits = c.vertex_run_memo().hits;
-  o.misses = c.vertex_run_memo().misses;
+  o.hits = c.vertex_run_memo().hits();
+  o.misses = c.vertex_run_memo().misses();
   return o;
 }
 
@@ -287,9 +287,10 @@ TEST_CASE("vertex runs: random traces of repeated runs == memo off == per-fragme
 TEST_CASE("vertex runs: the memo keeps at most kMaxVertices vertices; a record replaces its id's") {
   VertexRunMemo m;
   const std::size_t per_record = 1000;
+  const std::vector<ClipVertex> vertices(VertexRunMemo::kMaxVertices / 2);
   std::size_t most = 0;
   for (std::uint64_t id = 1; id <= VertexRunMemo::kMaxVertices / per_record + 10; ++id) {
-    CHECK(m.insert(id, per_record).vertices.size() == per_record);
+    CHECK(m.insert(id, vertices.data(), per_record).vertices.size() == per_record);
     most = std::max(most, m.size());
     CHECK(m.find(id) != nullptr);
   }
@@ -297,12 +298,12 @@ TEST_CASE("vertex runs: the memo keeps at most kMaxVertices vertices; a record r
   CHECK(m.size() < most);  // emptied once
   // Recording an id again replaces its record and its count.
   VertexRunMemo r;
-  for (int k = 0; k < 3; ++k) r.insert(7, VertexRunMemo::kMaxVertices / 2);
+  for (int k = 0; k < 3; ++k) r.insert(7, vertices.data(), vertices.size());
   CHECK(r.size() == 1);
-  r.insert(8, VertexRunMemo::kMaxVertices / 2);
+  r.insert(8, vertices.data(), vertices.size());
   CHECK(r.size() == 2);  // (7's half and 8's half: within the bound, nothing emptied)
   CHECK(r.find(7) != nullptr);
-  r.insert(9, 1);
+  r.insert(9, vertices.data(), 1);
   CHECK(r.size() == 1);  // one vertex more than the bound: emptied first
   CHECK(r.find(9) != nullptr);
 }
