@@ -31,7 +31,9 @@ void check_format(GLenum format, GLenum type, std::mt19937& g) {
   m.row_length = pick(0, 1) ? 0 : w + m.skip_pixels + pick(0, 3);
   const int row_groups = m.row_length > 0 ? m.row_length : w;
   const int row_bytes = (row_groups * n + m.alignment - 1) / m.alignment * m.alignment;
-  std::vector<unsigned char> data(static_cast<std::size_t>(row_bytes) * (h + m.skip_rows) + 8);
+  // (with ROW_LENGTH 0 a row holds `w` groups: the skipped pixels of the last row lie past it)
+  std::vector<unsigned char> data(static_cast<std::size_t>(row_bytes) * (h + m.skip_rows) +
+                                  static_cast<std::size_t>(n) * m.skip_pixels);
   for (unsigned char& b : data) b = static_cast<unsigned char>(pick(0, 255));
   const RgbaImage<T> img = unpack_rgba<T>(data.data(), w, h, format, type, m);
   REQUIRE(img.width == w);
