@@ -38,11 +38,11 @@
 #include "pipeline/texture/texture_object.h"
 #include "sim/framebuffer.h"
 #include "sim/geometry_memo.h"
-#include "sim/vertex_run_memo.h"
 #include "sim/gl_error.h"
 #include "sim/probe.h"
 #include "sim/raster_cache.h"
 #include "sim/upload_cache.h"
+#include "sim/vertex_run_memo.h"
 
 namespace ffsim {
 

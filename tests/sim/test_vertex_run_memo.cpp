@@ -82,49 +82,29 @@ std::string header(const std::string& profile = "") {
 }  // namespace
 
 TEST_CASE("vertex runs: equal calls share a class; the usage says what a replay compares, takes and fills") {
-  const std::string t = header() +                       // lines 1-5
-                        "glBegin GL_TRIANGLE_STRIP\n"               // 6
-                        "glColor4d 1 0.5 0.25 1\n"                  // 7: run A
-                        "glVertex2d 0 0\n"
-                        "glMultiTexCoord2d GL_TEXTURE1 0 1\n"
-                        "glVertex2d 8 0\n"
-                        "glTexCoord2d 1 1\n"
-                        "glNormal3d 0 1 0\n"
-                        "glVertex2d 0 8\n"
-                        "glVertex2d 8 8\n"                          // 14
-                        "glEnd\n"                                   // 15
-                        "glTexCoord2d 0 0\n"                        // 16: short runs are not memoized;
-                        "glMultiTexCoord4d GL_TEXTURE1 0 0 0 1\n"   // 17  line 7's entry coordinates again
-                        "glBegin GL_TRIANGLE_STRIP\n"               // 18
-                        "glColor4d 1 0.5 0.25 1\n"                  // 19: run A again
-                        "glVertex2d 0 0\n"
-                        "glMultiTexCoord2d GL_TEXTURE1 0 1\n"
-                        "glVertex2d 8 0\n"
-                        "glTexCoord2d 1 1\n"
-                        "glNormal3d 0 1 0\n"
-                        "glVertex2d 0 8\n"
-                        "glVertex2d 8 8\n"                          // 26
-                        "glEnd\n"                                   // 27
-                        "glBegin GL_TRIANGLE_STRIP\n"               // 28
-                        "glColor4d 1 0.5 0.25 1\n"                  // 29: run A but one coordinate bit
-                        "glVertex2d 0 0\n"
-                        "glMultiTexCoord2d GL_TEXTURE1 0 1\n"
-                        "glVertex2d 8 0\n"
-                        "glTexCoord2d 1 1\n"
-                        "glNormal3d 0 1 0\n"
-                        "glVertex2d 0 8\n"
-                        "glVertex2d 8 8.000000000000002\n"          // 36
-                        "glEnd\n"                                   // 37
-                        "glBegin GL_TRIANGLE_STRIP\n"               // 38
-                        "glColor4d 1 0.5 0.25 1\n"                  // 39: run A, entry coordinates (1, 1) and (0, 1)
-                        "glVertex2d 0 0\n"
-                        "glMultiTexCoord2d GL_TEXTURE1 0 1\n"
-                        "glVertex2d 8 0\n"
-                        "glTexCoord2d 1 1\n"
-                        "glNormal3d 0 1 0\n"
-                        "glVertex2d 0 8\n"
-                        "glVertex2d 8 8\n"                          // 46
-                        "glEnd\n"                                   // 47
+  // Run A: eight calls (lines 7-14 the first time); `last` is its last vertex's y.
+  auto run_a = [](const char* last) {
+    return std::string("glColor4d 1 0.5 0.25 1\n"
+                       "glVertex2d 0 0\n"
+                       "glMultiTexCoord2d GL_TEXTURE1 0 1\n"
+                       "glVertex2d 8 0\n"
+                       "glTexCoord2d 1 1\n"
+                       "glNormal3d 0 1 0\n"
+                       "glVertex2d 0 8\n"
+                       "glVertex2d 8 ") + last + "\n";
+  };
+  const std::string t = header() +                                        // lines 1-5
+                        "glBegin GL_TRIANGLE_STRIP\n" + run_a("8") +      // 6; 7-14: run A
+                        "glEnd\n"                                         // 15
+                        "glTexCoord2d 0 0\n"                              // 16: short runs are not memoized;
+                        "glMultiTexCoord4d GL_TEXTURE1 0 0 0 1\n"         // 17  line 7's entry coordinates again
+                        "glBegin GL_TRIANGLE_STRIP\n" + run_a("8") +      // 18; 19-26: run A again
+                        "glEnd\n"                                         // 27
+                        "glBegin GL_TRIANGLE_STRIP\n" +                   // 28; 29-36: run A but one coordinate bit
+                        run_a("8.000000000000002") +
+                        "glEnd\n"                                         // 37
+                        "glBegin GL_TRIANGLE_STRIP\n" + run_a("8") +      // 38; 39-46: run A, entry coordinates (1, 1) and (0, 1)
+                        "glEnd\n"                                         // 47
                         "hash color\n";
   const Program p = load_trace_text(t, "t.trace", {});
   const int first = 3;  // line 3 is step 0 (line 2, framebuffer, is set-up)
