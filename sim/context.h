@@ -473,6 +473,7 @@ class Context {
   void vertex_run_record(std::uint64_t id);
   void set_vertex_run_memo(bool on) {
     vertex_run_memo_on_ = on;
+    copy_pending_run();  // (before its record goes)
     if (!on) vertex_run_memo_.clear();
   }
   const VertexRunMemo& vertex_run_memo() const { return vertex_run_memo_; }
@@ -499,6 +500,9 @@ class Context {
   // glEnds whose vertices were put in window form once and shared by their
   // polygons (span path, smooth shading, every vertex inside the view volume).
   std::uint64_t shared_vertex_draws() const { return shared_vertex_draws_; }
+  // glEnds whose vertices were all one replayed run's and whose window
+  // attributes were read from the run's record (VertexRunFill; never copied).
+  std::uint64_t run_record_reads() const { return run_record_reads_; }
   // Span-path groups (sim/draw.cpp): triangles whose runs joined a group already
   // holding an earlier triangle's, and groups closed because a run met one of
   // their pixels.
@@ -670,9 +674,10 @@ class Context {
   void window_position(const glm::dvec4& clip, double iw, const DrawSetup& ds, WindowVertex& w) const;
   void window_attributes(const ClipVertex& c, double iw, const DrawSetup& ds, WindowVertex& w) const;
   // window_attributes of n vertices (a glEnd's shared vertices): the colour
-  // format checked once, not per vertex.
+  // format checked once, not per vertex. `fill`: c is a replayed run's record,
+  // whose vertices hold fill's values where the run does not write them.
   void window_attributes_n(const ClipVertex* c, const double* iw, std::size_t n, const DrawSetup& ds,
-                           WindowVertex* w) const;
+                           WindowVertex* w, const VertexRunFill* fill = nullptr) const;
   // The rows [y0, y1) (relative to the viewport corner) of one triangle, shaded
   // into `span` and written; `band` >= 0: on a worker, into that band's scratch
   // and counters (write_fragments without its plan update and probe).
@@ -773,9 +778,16 @@ class Context {
     CurrentAttribs entry;
     std::size_t first = 0;
   } vertex_run_start_;
+  VertexRunFill run_fill_;  // a replay whose vertices begin this glBegin, not copied yet
+  // A replay's vertices: the record's, the attributes it does not write filled
+  // in from f (vertex_run_replay). copy_pending_run: run_fill_'s, when pending,
+  // into the glBegin's array (before anything else reads or adds vertices).
+  void run_vertices(const VertexRunMemo::Record& r, const VertexRunFill& f, ClipVertex* out) const;
+  void copy_pending_run();
   std::vector<glm::dvec4> object_scratch_;  // a glEnd's object positions, for the memo
   std::vector<TriangleRef> sequence_scratch_;  // a glEnd's triangles (one thread)
-  std::uint64_t fast_runs_ = 0, split_batches_ = 0, split_triangles_ = 0, shared_vertex_draws_ = 0, batch_memo_uses_ = 0;
+  std::uint64_t fast_runs_ = 0, split_batches_ = 0, split_triangles_ = 0, shared_vertex_draws_ = 0, batch_memo_uses_ = 0,
+                run_record_reads_ = 0;
   std::uint64_t split_pixel_rects_ = 0;
   std::uint64_t split_uploads_ = 0;
   // Scratch of the span path, reused from run to run (sim/draw_span.cpp).

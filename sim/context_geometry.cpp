@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <initializer_list>
+#include <stdexcept>
 
 #include "pipeline/gl/enum_names.h"
 #include "sim/context.h"
@@ -49,6 +50,7 @@ void Context::begin(GLenum mode) {
   in_begin_ = true;
   begin_mode_ = mode;
   begin_count_ = 0;
+  run_fill_.pending = nullptr;
 }
 
 void Context::end() {
@@ -60,6 +62,14 @@ void Context::end() {
   std::vector<ClipVertex> v;
   v.swap(begin_vertices_);
   v.resize(begin_count_);  // (never larger: vertex4 grows it)
+  // A replayed run's vertices not copied into v yet (they are all of them): the
+  // record's, with fill's values where the run does not write. Copied where a
+  // path reads v; the window attributes from the memo read the record.
+  const VertexRunFill fill = run_fill_;
+  run_fill_.pending = nullptr;
+  const ClipVertex* const object = fill.pending ? fill.pending->vertices.data() : v.data();  // (the same positions)
+  if (fill.pending && fill.pending->vertices.size() != v.size())  // (pending only while there are no other vertices)
+    throw std::logic_error("glEnd: a replayed run's pending vertices are not the glBegin's");
   begin_count_ = 0;
   struct GiveBack {  // the vertices' storage back to begin_vertices_, however this ends
     std::vector<ClipVertex>& v;
@@ -101,9 +111,10 @@ void Context::end() {
   if (memo) {
     gkey = {begin_mode_, modelview_.top(), projection_.top(), ds.hw, ds.hh, depth_near_, depth_far_,
             profile_.subpixel_bits, ds.has_depth ? fb_.format().depth_bits : 0};
-    geo = geometry_memo_.find(gkey, n, [&v](std::size_t i) -> const glm::dvec4& { return v[i].position; });
+    geo = geometry_memo_.find(gkey, n, [object](std::size_t i) -> const glm::dvec4& { return object[i].position; });
   }
   if (!geo) {
+    if (fill.pending) run_vertices(*fill.pending, fill, v.data());
     if (memo) {
       object_scratch_.resize(n);
       for (std::size_t i = 0; i < n; ++i) object_scratch_[i] = v[i].position;
@@ -127,7 +138,12 @@ void Context::end() {
         w[i].p = geo->p[i];
         w[i].depth = ds.has_depth ? geo->depth[i] : 0;
       }
-      window_attributes_n(v.data(), geo->iw.data(), n, ds, w);
+      if (fill.pending) {  // the record and the fills: the vertices are never copied
+        ++run_record_reads_;
+        window_attributes_n(object, geo->iw.data(), n, ds, w, &fill);
+      } else {
+        window_attributes_n(v.data(), geo->iw.data(), n, ds, w);
+      }
       geometry = geo->serial;
       entry = geo;
     } else if (!memo) {
@@ -310,6 +326,7 @@ ClipVertex Context::make_vertex(const glm::dvec4& object) const {
 void Context::vertex4(double x, double y, double z, double w) {
   // Outside glBegin/glEnd a vertex has no effect (GL121 §2.6.3 leaves it undefined).
   if (!in_begin_) return;
+  if (run_fill_.pending) copy_pending_run();  // (a replay's vertices before this one)
   // The vertices of earlier glEnds are overwritten in place (every field is
   // written: constructing one costs more than filling it). The object position
   // is kept: glEnd transforms it (the matrices cannot change inside

@@ -44,21 +44,24 @@ bool Context::vertex_run_replay(std::uint64_t id, const VertexRunUsage& usage) {
   }
   vertex_run_memo_.count(true);
   if (in_begin_ && !r->vertices.empty()) {
+    copy_pending_run();  // (an earlier replay's vertices: these follow them)
     const std::size_t n = r->vertices.size();
-    if (begin_vertices_.size() < begin_count_ + n) begin_vertices_.resize(begin_count_ + n);  // (every slot copied below)
-    ClipVertex* out = begin_vertices_.data() + begin_count_;
-    std::memcpy(static_cast<void*>(out), r->vertices.data(), n * sizeof(ClipVertex));
     // The attributes the run does not write: each vertex took the current value
     // (vertex_attributes), the same for all of them.
-    if (!(usage.written & kAttribColor))
-      for (std::size_t i = 0; i < n; ++i) out[i].color = current_color_clamped_;
-    if (!(usage.written & kAttribSecondary))
-      for (std::size_t i = 0; i < n; ++i) out[i].secondary = current_secondary_clamped_;
+    VertexRunFill f{nullptr, usage.written, {}, {}, {}};
+    if (!(usage.written & kAttribColor)) f.color = current_color_clamped_;
+    if (!(usage.written & kAttribSecondary)) f.secondary = current_secondary_clamped_;
     for (int u = 0; u < profile_.texture_units; ++u) {
-      if (usage.written & texcoord_bit(u)) continue;
+      if (!f.fills_texcoord(u, profile_.texture_units)) continue;
       const auto& tc = current_.texcoord[u];
-      const glm::dvec4 t = texture_matrix_[u].top() * glm::dvec4(tc[0], tc[1], tc[2], tc[3]);
-      for (std::size_t i = 0; i < n; ++i) out[i].texcoord[u] = t;
+      f.texcoord[static_cast<std::size_t>(u)] = texture_matrix_[u].top() * glm::dvec4(tc[0], tc[1], tc[2], tc[3]);
+    }
+    if (begin_count_ == 0) {  // the glBegin's first vertices: copied when needed (glEnd may not)
+      run_fill_ = f;
+      run_fill_.pending = r;
+    } else {
+      if (begin_vertices_.size() < begin_count_ + n) begin_vertices_.resize(begin_count_ + n);  // (every slot copied)
+      run_vertices(*r, f, begin_vertices_.data() + begin_count_);
     }
     begin_count_ += n;
   }
@@ -69,7 +72,29 @@ bool Context::vertex_run_replay(std::uint64_t id, const VertexRunUsage& usage) {
   return true;
 }
 
+void Context::run_vertices(const VertexRunMemo::Record& r, const VertexRunFill& f, ClipVertex* out) const {
+  const std::size_t n = r.vertices.size();
+  std::memcpy(static_cast<void*>(out), r.vertices.data(), n * sizeof(ClipVertex));
+  if (!(f.written & kAttribColor))
+    for (std::size_t i = 0; i < n; ++i) out[i].color = f.color;
+  if (!(f.written & kAttribSecondary))
+    for (std::size_t i = 0; i < n; ++i) out[i].secondary = f.secondary;
+  for (int u = 0; u < profile_.texture_units; ++u)
+    if (f.fills_texcoord(u, profile_.texture_units))
+      for (std::size_t i = 0; i < n; ++i) out[i].texcoord[u] = f.texcoord[static_cast<std::size_t>(u)];
+}
+
+void Context::copy_pending_run() {
+  if (!run_fill_.pending) return;
+  // The glBegin's first vertices (pending only while there are no others).
+  const std::size_t n = run_fill_.pending->vertices.size();
+  if (begin_vertices_.size() < n) begin_vertices_.resize(n);  // (every slot copied)
+  run_vertices(*run_fill_.pending, run_fill_, begin_vertices_.data());
+  run_fill_.pending = nullptr;
+}
+
 void Context::vertex_run_record(std::uint64_t id) {
+  copy_pending_run();  // (the vertices are read below, and a record may replace the pending one)
   if (vertex_run_start_.id != id || id == 0 || begin_count_ < vertex_run_start_.first) return;
   vertex_run_start_.id = 0;
   const std::size_t first = vertex_run_start_.first;

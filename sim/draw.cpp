@@ -263,7 +263,7 @@ void Context::window_attributes(const ClipVertex& c, double iw, const DrawSetup&
 }
 
 void Context::window_attributes_n(const ClipVertex* c, const double* iw, std::size_t n, const DrawSetup& ds,
-                                  WindowVertex* w) const {
+                                  WindowVertex* w, const VertexRunFill* fill) const {
   // Vertex colours into the fragment colour format (§1.2 codes, or binary32/64).
   // A colour equal bit for bit to the previous vertex's (in the same format)
   // converts to the same codes: with the fast paths, the last conversion of each
@@ -277,16 +277,25 @@ void Context::window_attributes_n(const ClipVertex* c, const double* iw, std::si
       m = {fast_paths_, f, v, rgba_from_values(v, f)};
     return m.out;
   };
+  // Each attribute's source: the vertex's own, or (fill) one value for every vertex.
+  const std::array<double, 4>* color = fill && !(fill->written & kAttribColor) ? &fill->color : nullptr;
+  const std::array<double, 4>* secondary = fill && !(fill->written & kAttribSecondary) ? &fill->secondary : nullptr;
+  std::array<const glm::dvec4*, kMaxTextureUnits> texcoord{};
+  for (int u = 0; u < kMaxTextureUnits; ++u)
+    if (fill && fill->fills_texcoord(u, profile_.texture_units)) texcoord[u] = &fill->texcoord[static_cast<std::size_t>(u)];
   for (std::size_t i = 0; i < n; ++i) {
     const ClipVertex& v = c[i];
-    const Rgba &pc = convert(v.color, color_memo_[0]), &sc = convert(v.secondary, color_memo_[1]);
+    const Rgba &pc = convert(color ? *color : v.color, color_memo_[0]),
+               &sc = convert(secondary ? *secondary : v.secondary, color_memo_[1]);
     WindowVertex& o = w[i];
     o.color_code = pc.code;
     o.secondary_code = sc.code;
     o.color = pc.value;
     o.secondary = sc.value;
-    for (int u = 0; u < kMaxTextureUnits; ++u)
-      o.tcw[u] = {v.texcoord[u].x * iw[i], v.texcoord[u].y * iw[i], v.texcoord[u].w * iw[i]};
+    for (int u = 0; u < kMaxTextureUnits; ++u) {
+      const glm::dvec4& t = texcoord[u] ? *texcoord[u] : v.texcoord[u];
+      o.tcw[u] = {t.x * iw[i], t.y * iw[i], t.w * iw[i]};
+    }
   }
 }
 

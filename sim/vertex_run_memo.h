@@ -104,4 +104,23 @@ class VertexRunMemo {
   std::size_t vertices_ = 0;
 };
 
+// A replay whose vertices begin the glBegin, not copied into the glBegin's
+// array yet: its record and what it took from the current state instead of the
+// record (the attributes the run does not write: each vertex holds the current
+// value, the same for all of them). Copied when something else needs the
+// array (Context::copy_pending_run); a glEnd whose vertices are all the
+// run's and whose positions the geometry memo knows reads the record and the
+// fills instead (window_attributes_n; docs/performance.md 26).
+struct VertexRunFill {
+  const VertexRunMemo::Record* pending = nullptr;  // null: none
+  std::uint8_t written = 0;                        // VertexRunUsage::written
+  // The colours when the run does not write them, and each unit's coordinates
+  // after its texture matrix when the run does not write them and the profile
+  // has the unit (else 0).
+  std::array<double, 4> color{}, secondary{};
+  std::array<glm::dvec4, kClipTexUnits> texcoord{};
+  // Whether unit u's coordinates are filled (else the vertices' own).
+  bool fills_texcoord(int u, int units) const { return u < units && !(written & texcoord_bit(u)); }
+};
+
 }  // namespace ffsim

@@ -35,7 +35,7 @@ struct Outcome {
   RunResult result;
   std::array<double, 4> color, secondary, normal;
   std::vector<std::array<double, 4>> texcoord;
-  std::uint64_t hits = 0, misses = 0;
+  std::uint64_t hits = 0, misses = 0, record_reads = 0;
 };
 
 Outcome run(const Program& p, int mode) {  // 0: memo on, 1: memo off, 2: per-fragment path (memo off with it)
@@ -51,6 +51,7 @@ Outcome run(const Program& p, int mode) {  // 0: memo on, 1: memo off, 2: per-fr
   for (int u = 0; u < p.profile.texture_units; ++u) o.texcoord.push_back(c.current_texcoord(u));
   o.hits = c.vertex_run_memo().hits();
   o.misses = c.vertex_run_memo().misses();
+  o.record_reads = c.run_record_reads();
   return o;
 }
 
@@ -77,6 +78,21 @@ std::string header(const std::string& profile = "") {
          "glMatrixMode GL_PROJECTION\n"
          "glOrtho 0 24 0 24 -1 1\n"
          "glMatrixMode GL_MODELVIEW\n";
+}
+
+// Every unit of `units` textured (MODULATE) by a 4x1 RGBA table, from the last
+// unit down (unit 0 active at the end), so that every coordinate shows.
+std::string textured_units(int units) {
+  std::string t = "table tex 4 x 1-x 0.25+0.5*x 1\n";
+  for (int u = units - 1; u >= 0; --u) {
+    t += "glActiveTexture GL_TEXTURE" + std::to_string(u) + "\n";
+    t += "glBindTexture GL_TEXTURE_2D " + std::to_string(u + 1) + "\n";
+    t += "glTexImage2D GL_TEXTURE_2D 0 GL_RGBA 4 1 0 GL_RGBA GL_FLOAT tex\n";
+    t += "glTexParameteri GL_TEXTURE_2D GL_TEXTURE_MIN_FILTER GL_NEAREST\n";
+    t += "glTexParameteri GL_TEXTURE_2D GL_TEXTURE_MAG_FILTER GL_LINEAR\n";
+    t += "glEnable GL_TEXTURE_2D\n";
+  }
+  return t;
 }
 
 }  // namespace
@@ -181,9 +197,42 @@ TEST_CASE("vertex runs: a replay compares the read-first attributes and the writ
   check_same(on, ref);
 }
 
+TEST_CASE("vertex runs: a replay's vertices are read from its record until something else needs them") {
+  // Run R: unit 0's coordinates and the positions of a strip; the colours and
+  // unit 1's coordinates are filled in from the current state.
+  const std::string r =
+      "glTexCoord2d 0.25 0\nglVertex2d 0 0\n"
+      "glTexCoord2d 0.75 0\nglVertex2d 20 0\n"
+      "glTexCoord2d 0.25 1\nglVertex2d 0 20\n"
+      "glTexCoord2d 0.75 1\nglVertex2d 20 20\n"
+      "glVertex2d 24 24\n";
+  auto strip = [&](const std::string& before, const std::string& after) {  // (a hash ends a run)
+    return "glBegin GL_TRIANGLE_STRIP\n" + before + (before.empty() ? "" : "hash alpha\n") + r +
+           (after.empty() ? "" : "hash alpha\n") + after + "glEnd\nhash color\n";
+  };
+  const std::string t =
+      header("geforce256") + textured_units(2) + "glEnable GL_BLEND\nglBlendFunc GL_ONE GL_ONE\n" +
+      "glColor4d 0.25 0.5 0.125 1\n" + strip("", "") +  // R recorded; the geometry memo's entry made
+      "glColor4d 0.5 0.25 0.75 1\nglMultiTexCoord2d GL_TEXTURE1 0.5 0.5\n" +
+      strip("", "") +                     // replayed, read from the record: other colour, unit 1 filled
+      strip("", "glVertex2d 5 22\n") +    // replayed, copied for the vertex after it
+      strip("", r) +                      // replayed twice: the first copied for the second
+      strip("", "glColor4d 1 0 0 1\n") +  // read from the record: the colour set after the run is no vertex's
+      strip("glVertex2d 3 3\n", "");      // after a vertex: copied at once
+  const Program p = load_trace_text(t, "t.trace", {});
+  REQUIRE(p.vertex_runs.size() == 1);
+  const Outcome on = run(p, 0), off = run(p, 1), ref = run(p, 2);
+  CHECK(on.misses == 1);
+  CHECK(on.hits == 6);
+  CHECK(on.record_reads == 2);  // the second and the fifth glEnd
+  CHECK(off.record_reads == 0);
+  check_same(on, off);
+  check_same(on, ref);
+}
+
 TEST_CASE("vertex runs: random traces of repeated runs == memo off == per-fragment path") {
   for (const char* profile : {"geforce256", "rgba12"}) {
-    std::uint64_t hits = 0, misses = 0;
+    std::uint64_t hits = 0, misses = 0, reads = 0;
 #ifdef FFSIM_SANITIZE
     for (std::uint32_t seed = 1; seed <= 4; ++seed) {
 #else
@@ -221,17 +270,8 @@ TEST_CASE("vertex runs: random traces of repeated runs == memo off == per-fragme
         }
         templates.push_back(s);
       }
-      std::string t = header(profile) +
-                      "table tex 4 x 1-x 0.25+0.5*x 1\n"
+      std::string t = header(profile) + textured_units(units) +
                       "glEnable GL_BLEND\nglBlendFunc GL_ONE GL_ONE\nglEnable GL_COLOR_SUM\n";
-      for (int u = units - 1; u >= 0; --u) {  // every unit textured (MODULATE), so every coordinate shows
-        t += "glActiveTexture GL_TEXTURE" + std::to_string(u) + "\n";
-        t += "glBindTexture GL_TEXTURE_2D " + std::to_string(u + 1) + "\n";
-        t += "glTexImage2D GL_TEXTURE_2D 0 GL_RGBA 4 1 0 GL_RGBA GL_FLOAT tex\n";
-        t += "glTexParameteri GL_TEXTURE_2D GL_TEXTURE_MIN_FILTER GL_NEAREST\n";
-        t += "glTexParameteri GL_TEXTURE_2D GL_TEXTURE_MAG_FILTER GL_LINEAR\n";
-        t += "glEnable GL_TEXTURE_2D\n";
-      }
       const char* const modes[] = {"GL_TRIANGLE_STRIP", "GL_TRIANGLES", "GL_TRIANGLE_FAN", "GL_QUADS", "GL_POLYGON"};
       for (int k = 0; k < 40; ++k) {
         // State between runs.
@@ -256,11 +296,13 @@ TEST_CASE("vertex runs: random traces of repeated runs == memo off == per-fragme
       const Outcome on = run(p, 0), off = run(p, 1), ref = run(p, 2);
       hits += on.hits;
       misses += on.misses;
+      reads += on.record_reads;
       check_same(on, off);
       check_same(on, ref);
     }
     CHECK(hits > 0);  // (both taken: about one replay to five recordings)
     CHECK(misses > 0);
+    CHECK(reads > 0);  // (glEnds whose attributes were read from a record)
   }
 }
 
