@@ -106,12 +106,16 @@ void Context::end() {
   // codes; otherwise they are transformed here.
   const bool memo = shared && geometry_memo_on_;
   GeometryKey gkey;
+  std::uint64_t positions_hash = 0;
   const GeometryEntry* geo = nullptr;
   const GeometryEntry* entry = nullptr;  // this glEnd's memo entry, found or made
   if (memo) {
     gkey = {begin_mode_, modelview_.top(), projection_.top(), ds.hw, ds.hh, depth_near_, depth_far_,
             profile_.subpixel_bits, ds.has_depth ? fb_.format().depth_bits : 0};
-    geo = geometry_memo_.find(gkey, n, [object](std::size_t i) -> const glm::dvec4& { return object[i].position; });
+    const auto object_at = [object](std::size_t i) -> const glm::dvec4& { return object[i].position; };
+    // (a replayed run's record keeps its positions' hash; a miss inserts with it)
+    positions_hash = fill.pending ? fill.pending->positions_hash : GeometryMemo::positions_hash(n, object_at);
+    geo = geometry_memo_.find(gkey, n, positions_hash, object_at);
   }
   if (!geo) {
     if (fill.pending) run_vertices(*fill.pending, fill, v.data());
@@ -149,7 +153,7 @@ void Context::end() {
     } else if (!memo) {
       for (std::size_t i = 0; i < n; ++i) window_vertex(v[i], ds, w[i]);
     } else {  // window_vertex's two halves, keeping 1/w_c and the position half in the memo
-      GeometryEntry& e = geometry_memo_.insert(gkey, n, [this](std::size_t i) -> const glm::dvec4& { return object_scratch_[i]; });
+      GeometryEntry& e = geometry_memo_.insert(gkey, n, positions_hash, [this](std::size_t i) -> const glm::dvec4& { return object_scratch_[i]; });
       e.iw.resize(n);
       e.p.resize(n);
       e.depth.resize(ds.has_depth ? n : 0);

@@ -106,6 +106,9 @@ void Context::vertex_run_record(std::uint64_t id) {
   r.exit = current_;
   r.exit_color_clamped = current_color_clamped_;
   r.exit_secondary_clamped = current_secondary_clamped_;
+  // (a glEnd of only this run's replay looks its geometry up without hashing again)
+  r.positions_hash = GeometryMemo::positions_hash(
+      n, [&r](std::size_t i) -> const glm::dvec4& { return r.vertices[i].position; });
 }
 
 }  // namespace ffsim

@@ -77,13 +77,28 @@ class GeometryMemo {
   explicit GeometryMemo(int hash_bits = 64)
       : hash_mask_(hash_bits >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << hash_bits) - 1) {}
 
-  // The entry for `key` and the n object positions at position_of(i), or null.
+  // The part of an entry's hash that the n object positions at position_of(i)
+  // make (the key's part is added by find and insert). A caller that draws
+  // the same positions again keeps it (a vertex-run record, sim/vertex_run_memo.h).
   template <class PositionOf>
-  const GeometryEntry* find(const GeometryKey& key, std::size_t n, PositionOf position_of);
+  static std::uint64_t positions_hash(std::size_t n, PositionOf position_of);
+  // The entry for `key` and the n object positions at position_of(i), whose
+  // positions_hash is `ph`, or null. (The positions are compared, not only hashed.)
+  template <class PositionOf>
+  const GeometryEntry* find(const GeometryKey& key, std::size_t n, std::uint64_t ph, PositionOf position_of);
   // A new entry (its vectors empty but `object`), with a serial of its own; the
   // caller fills iw, p and depth. Replaces an entry of the same hash.
   template <class PositionOf>
-  GeometryEntry& insert(const GeometryKey& key, std::size_t n, PositionOf position_of);
+  GeometryEntry& insert(const GeometryKey& key, std::size_t n, std::uint64_t ph, PositionOf position_of);
+  // The same, hashing the positions here.
+  template <class PositionOf>
+  const GeometryEntry* find(const GeometryKey& key, std::size_t n, PositionOf position_of) {
+    return find(key, n, positions_hash(n, position_of), position_of);
+  }
+  template <class PositionOf>
+  GeometryEntry& insert(const GeometryKey& key, std::size_t n, PositionOf position_of) {
+    return insert(key, n, positions_hash(n, position_of), position_of);
+  }
   void clear();
 
   std::uint64_t hits() const { return hits_; }
@@ -91,8 +106,11 @@ class GeometryMemo {
   std::size_t size() const { return entries_.size(); }
 
  private:
-  template <class PositionOf>
-  static std::uint64_t hash(const GeometryKey& key, std::size_t n, PositionOf position_of);
+  std::uint64_t hash(const GeometryKey& key, std::size_t n, std::uint64_t ph) const {
+    std::uint64_t h = hash_key(key, n);
+    hash_mix(h, ph);
+    return h & hash_mask_;
+  }
   static std::uint64_t hash_key(const GeometryKey& key, std::size_t n);
   // hash_mix over the value's bits (−0 and +0, and NaNs of other payloads,
   // differ: the key is compared bit for bit).
@@ -107,10 +125,10 @@ class GeometryMemo {
 // ---- implementation ------------------------------------------------------------
 
 template <class PositionOf>
-std::uint64_t GeometryMemo::hash(const GeometryKey& key, std::size_t n, PositionOf position_of) {
+std::uint64_t GeometryMemo::positions_hash(std::size_t n, PositionOf position_of) {
   // One multiply-xorshift lane per coordinate (four independent chains; one
   // chain over every coordinate was slower than the transformation it saves).
-  std::array<std::uint64_t, 4> h{hash_key(key, n), 0x9E3779B97F4A7C15ull * 3, 0x9E3779B97F4A7C15ull * 5,
+  std::array<std::uint64_t, 4> h{0x9E3779B97F4A7C15ull, 0x9E3779B97F4A7C15ull * 3, 0x9E3779B97F4A7C15ull * 5,
                                  0x9E3779B97F4A7C15ull * 7};
   for (std::size_t i = 0; i < n; ++i) {
     const glm::dvec4& o = position_of(i);
@@ -121,8 +139,9 @@ std::uint64_t GeometryMemo::hash(const GeometryKey& key, std::size_t n, Position
 }
 
 template <class PositionOf>
-const GeometryEntry* GeometryMemo::find(const GeometryKey& key, std::size_t n, PositionOf position_of) {
-  const auto it = entries_.find(hash(key, n, position_of) & hash_mask_);
+const GeometryEntry* GeometryMemo::find(const GeometryKey& key, std::size_t n, std::uint64_t ph,
+                                        PositionOf position_of) {
+  const auto it = entries_.find(hash(key, n, ph));
   bool same = it != entries_.end() && it->second.object.size() == n && same_key(it->second.key, key);
   for (std::size_t i = 0; i < n && same; ++i) same = std::memcmp(&it->second.object[i], &position_of(i), sizeof(glm::dvec4)) == 0;
   if (!same) {
@@ -134,9 +153,9 @@ const GeometryEntry* GeometryMemo::find(const GeometryKey& key, std::size_t n, P
 }
 
 template <class PositionOf>
-GeometryEntry& GeometryMemo::insert(const GeometryKey& key, std::size_t n, PositionOf position_of) {
+GeometryEntry& GeometryMemo::insert(const GeometryKey& key, std::size_t n, std::uint64_t ph, PositionOf position_of) {
   if (vertices_ + n > kMaxVertices) clear();
-  const std::uint64_t h = hash(key, n, position_of) & hash_mask_;
+  const std::uint64_t h = hash(key, n, ph);
   const auto old = entries_.find(h);
   if (old != entries_.end()) {
     vertices_ -= old->second.object.size();

@@ -69,6 +69,7 @@ class VertexRunMemo {
     CurrentAttribs exit;   // taken: the written attributes
     std::array<double, 4> exit_color_clamped{}, exit_secondary_clamped{};
     std::vector<ClipVertex> vertices;  // inside glBegin/glEnd: the vertices the run made
+    std::uint64_t positions_hash = 0;  // GeometryMemo::positions_hash of their object positions
   };
 
   const Record* find(std::uint64_t id) const {
