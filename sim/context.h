@@ -88,7 +88,8 @@ static_assert(kMaxTextureUnits == kClipTexUnits);
 
 struct WindowVertex;       // sim/draw_span.h
 // The draw path's window vertices: resized without a fill (every member is
-// written before it is read; sim/draw_span.h).
+// written before it is read, tcw only for the units the plan samples, the only
+// ones read; sim/draw_span.h, Context::window_attributes_n).
 using WindowVertices = FilledVector<WindowVertex>;  // (sim/raster_cache.h)
 class WorkerPool;          // sim/worker_pool.h
 // Runs for the span path: `count` fragments in `runs` runs of length[0],

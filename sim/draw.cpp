@@ -280,19 +280,33 @@ void Context::window_attributes_n(const ClipVertex* c, const double* iw, std::si
   // Each attribute's source: the vertex's own, or (fill) one value for every vertex.
   const std::array<double, 4>* color = fill && !(fill->written & kAttribColor) ? &fill->color : nullptr;
   const std::array<double, 4>* secondary = fill && !(fill->written & kAttribSecondary) ? &fill->secondary : nullptr;
+  // A filled colour is one value for all n vertices: converted once (the memo
+  // would return the same codes for each).
+  const Rgba* const color_once = color ? &convert(*color, color_memo_[0]) : nullptr;
+  const Rgba* const secondary_once = secondary ? &convert(*secondary, color_memo_[1]) : nullptr;
+  // s/w, t/w, q/w only for the units the plan samples: every reader of tcw reads
+  // a sampled unit's (texture_coordinates, coords_reuse_mask, the recorded
+  // groups, the per-fragment path), and a glEnd's window vertices are drawn
+  // under its own plan; the others are left unwritten.
+  std::array<int, kMaxTextureUnits> units{};
+  int unit_count = 0;
   std::array<const glm::dvec4*, kMaxTextureUnits> texcoord{};
-  for (int u = 0; u < kMaxTextureUnits; ++u)
+  for (int u = 0; u < kMaxTextureUnits; ++u) {
+    if (!ds.plan->sample[static_cast<std::size_t>(u)]) continue;
+    units[static_cast<std::size_t>(unit_count++)] = u;
     if (fill && fill->fills_texcoord(u, profile_.texture_units)) texcoord[u] = &fill->texcoord[static_cast<std::size_t>(u)];
+  }
   for (std::size_t i = 0; i < n; ++i) {
     const ClipVertex& v = c[i];
-    const Rgba &pc = convert(color ? *color : v.color, color_memo_[0]),
-               &sc = convert(secondary ? *secondary : v.secondary, color_memo_[1]);
+    const Rgba &pc = color_once ? *color_once : convert(v.color, color_memo_[0]),
+               &sc = secondary_once ? *secondary_once : convert(v.secondary, color_memo_[1]);
     WindowVertex& o = w[i];
     o.color_code = pc.code;
     o.secondary_code = sc.code;
     o.color = pc.value;
     o.secondary = sc.value;
-    for (int u = 0; u < kMaxTextureUnits; ++u) {
+    for (int j = 0; j < unit_count; ++j) {
+      const int u = units[static_cast<std::size_t>(j)];
       const glm::dvec4& t = texcoord[u] ? *texcoord[u] : v.texcoord[u];
       o.tcw[u] = {t.x * iw[i], t.y * iw[i], t.w * iw[i]};
     }

@@ -10,8 +10,9 @@
 namespace ffsim {
 
 // Context::window_position and window_attributes write every member (depth 0
-// without a depth buffer), so the draw path's vertex arrays (WindowVertices)
-// grow without a fill; `WindowVertex{}` is all zeros.
+// without a depth buffer; tcw only for the units the draw's plan samples, the
+// only ones any reader takes), so the draw path's vertex arrays
+// (WindowVertices) grow without a fill; `WindowVertex{}` is all zeros.
 struct WindowVertex {
   SnappedVertex p;
   std::array<std::uint32_t, 4> color_code, secondary_code;
