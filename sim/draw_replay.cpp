@@ -10,6 +10,7 @@
 // group. A group's depth codes depend on its runs and the vertices' depth codes,
 // its pixel list on its runs and the window width. All of these are the key, so
 // the replay's groups, long runs, depth codes and pixel lists are the rasterizer's.
+#include <algorithm>
 #include <array>
 #include <utility>
 
@@ -49,10 +50,12 @@ std::vector<std::int64_t> Context::raster_key(const DrawSetup& ds, const Triangl
   std::array<int, 32> first_seen;  // by mask; -1: not yet
   first_seen.fill(-1);
   int distinct = 0;
+  // Fewer than two sampled units: every mask is 0 (nothing to share), label 0.
+  const bool shares = std::count(ds.plan->sample.begin(), ds.plan->sample.end(), true) >= 2;
   for (std::size_t i = 0; i < count; ++i) {
     if (!named)
       for (const WindowVertex* v : tris[i]) key.insert(key.end(), {v->p.x, v->p.y, ds.has_depth ? v->depth : 0});
-    int& label = first_seen[coords_reuse_mask(*ds.plan, tris[i]) & 31u];
+    int& label = first_seen[shares ? coords_reuse_mask(*ds.plan, tris[i]) & 31u : 0u];
     if (label < 0) label = distinct++;
     key.push_back(label);
   }
