@@ -498,6 +498,8 @@ class Context {
   // Texture uploads (and sub-images) unpacked, transferred and stored in row
   // bands on the pool (upload_in_bands, docs/performance.md 24.2).
   std::uint64_t split_uploads() const { return split_uploads_; }
+  // glClears whose rows were written in bands on the pool (docs/performance.md 27.1).
+  std::uint64_t split_clears() const { return split_clears_; }
   // glEnds whose vertices were put in window form once and shared by their
   // polygons (span path, smooth shading, every vertex inside the view volume).
   std::uint64_t shared_vertex_draws() const { return shared_vertex_draws_; }
@@ -791,6 +793,7 @@ class Context {
                 run_record_reads_ = 0;
   std::uint64_t split_pixel_rects_ = 0;
   std::uint64_t split_uploads_ = 0;
+  std::uint64_t split_clears_ = 0;
   // Scratch of the span path, reused from run to run (sim/draw_span.cpp).
   // (alignas(64): the bands' scratch never share a cache line, so two threads'
   // writes to their own members do not take the line from each other; the same

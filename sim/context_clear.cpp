@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "sim/context.h"
+#include "sim/worker_pool.h"
 
 namespace ffsim {
 
@@ -68,10 +69,31 @@ void Context::clear(GLbitfield mask) {
   const bool probed = probe_.inside(r);
   std::string before;
   if (probed) before = probe_describe_buffers(probe_.x(), probe_.y());
-  if (mask & gl::COLOR_BUFFER_BIT) fb_.clear_color(r, clear_.color, masks_.color);
-  if (mask & gl::STENCIL_BUFFER_BIT) fb_.clear_stencil(r, clear_.stencil, masks_.stencil);
-  if ((mask & gl::DEPTH_BUFFER_BIT) && masks_.depth) fb_.clear_depth(r, clear_.depth);
+  ClearValues v;
+  v.color = mask & gl::COLOR_BUFFER_BIT;
+  v.rgba = clear_.color;
+  v.color_mask = masks_.color;
+  v.stencil = mask & gl::STENCIL_BUFFER_BIT;
+  v.stencil_value = clear_.stencil;
+  v.stencil_mask = masks_.stencil;
+  v.depth = (mask & gl::DEPTH_BUFFER_BIT) && masks_.depth;
+  v.depth01 = clear_.depth;
   // ACCUM_BUFFER_BIT: this context has no accumulation buffer, so nothing to clear.
+  const ClearPlan plan = fb_.plan_clear(r, v);
+  const int height = plan.r.height;
+  // Threads (docs/performance.md 27.1): a large clear's rows in bands on the
+  // pool, cut as a draw over the same rows cuts them, so each band's memory is
+  // first written by the thread that will draw it. Rows are disjoint: the same
+  // values as in order.
+  if (threads_ > 1 && !probed && height >= 2 && std::int64_t{plan.r.width} * height >= split_fragments_) {
+    const int bands = std::min(4 * threads_, height);
+    ++split_clears_;
+    pool().run(bands, [&](int k) {
+      fb_.clear_rows(plan, plan.r.y + height * k / bands, plan.r.y + height * (k + 1) / bands);
+    });
+  } else {
+    fb_.clear_rows(plan, plan.r.y, plan.r.y + height);
+  }
   if (probed)
     probe_.record("clear", before + " -> " + probe_describe_buffers(probe_.x(), probe_.y()));
 }

@@ -9,7 +9,7 @@ namespace ffsim {
 namespace {
 
 // dst[i] = pattern[i mod 4] where mask[i mod 4], for the n components of one row
-// of pixels (n a multiple of 4). The pattern is copied first: it may lie in dst.
+// of pixels (n a multiple of 4).
 template <class T>
 void copy_masked(const T* pattern, const std::array<bool, 4>& mask, T* dst, std::size_t n) {
   const std::array<T, 4> p{pattern[0], pattern[1], pattern[2], pattern[3]};
@@ -84,13 +84,19 @@ std::array<double, 4> Framebuffer::color(int x, int y) const {
   return {color_value(x, y, 0), color_value(x, y, 1), color_value(x, y, 2), color_value(x, y, 3)};
 }
 
+std::uint16_t Framebuffer::color_code_of(double v) const {
+  return static_cast<std::uint16_t>(unorm_from_double(v, fmt_.color_bits));
+}
+
+double Framebuffer::color_float_of(double v) const {
+  const double c = std::clamp(v, 0.0, 1.0);
+  return fmt_.color_arith == Arithmetic::Float32 ? static_cast<float>(c) : c;
+}
+
 void Framebuffer::store_color_value(int x, int y, int c, double v) {
   const std::size_t i = 4 * index(x, y) + c;
-  switch (fmt_.color_arith) {
-    case Arithmetic::Fixed: codes()[i] = static_cast<std::uint16_t>(unorm_from_double(v, fmt_.color_bits)); break;
-    case Arithmetic::Float32: values()[i] = static_cast<float>(std::clamp(v, 0.0, 1.0)); break;
-    case Arithmetic::Float64: values()[i] = std::clamp(v, 0.0, 1.0); break;
-  }
+  if (fmt_.float_color()) values()[i] = color_float_of(v);
+  else codes()[i] = color_code_of(v);
 }
 
 Rect intersect(const Rect& a, const Rect& b) {
@@ -99,55 +105,91 @@ Rect intersect(const Rect& a, const Rect& b) {
   return {x0, y0, std::max(0, x1 - x0), std::max(0, y1 - y0)};
 }
 
-void Framebuffer::clear_color(const Rect& r0, const std::array<double, 4>& rgba, const std::array<bool, 4>& mask) {
-  const Rect r = intersect(r0, bounds());
-  if (r.width == 0 || r.height == 0) return;
-  // A clear of every pixel and channel writes every value: the owed fill is
-  // not needed (any other clear keeps some zeros, so it is done first).
-  if (covers_all(r) && mask[0] && mask[1] && mask[2] && mask[3]) unfilled_ &= ~kColor;
-  else fill_zero(kColor);
-  // The clear colour is converted once (store_color_value's rule: a code, or a
-  // clamped binary32/64 value) and copied; every pixel gets the same bits.
-  const int x0 = r.x, y0 = r.y;
-  for (int c = 0; c < 4; ++c)
-    if (mask[c]) store_color_value(x0, y0, c, rgba[c]);
-  const std::size_t first = 4 * index(x0, y0);
-  // Row by row: a row of the rectangle is contiguous, 4 components per pixel.
-  const std::size_t row = 4 * static_cast<std::size_t>(r.width);
-  for (int y = r.y; y < r.y + r.height; ++y) {
-    const std::size_t i0 = 4 * index(x0, y);
-    if (fmt_.float_color()) copy_masked(values_.data() + first, mask, values_.data() + i0, row);
-    else copy_masked(codes_.data() + first, mask, codes_.data() + i0, row);
-  }
+void Framebuffer::clear_color(const Rect& r, const std::array<double, 4>& rgba, const std::array<bool, 4>& mask) {
+  ClearValues v;
+  v.color = true;
+  v.rgba = rgba;
+  v.color_mask = mask;
+  clear(r, v);
 }
 
-void Framebuffer::clear_stencil(const Rect& r0, std::uint32_t value, std::uint32_t writemask) {
-  if (!has_stencil()) return;
-  const Rect r = intersect(r0, bounds());
-  const std::uint32_t m = writemask & stencil_max();
-  if ((unfilled_ & kStencil) && covers_all(r) && m == stencil_max()) {
+void Framebuffer::clear_stencil(const Rect& r, std::uint32_t value, std::uint32_t writemask) {
+  ClearValues v;
+  v.stencil = true;
+  v.stencil_value = value;
+  v.stencil_mask = writemask;
+  clear(r, v);
+}
+
+void Framebuffer::clear_depth(const Rect& r, double depth01) {
+  ClearValues v;
+  v.depth = true;
+  v.depth01 = depth01;
+  clear(r, v);
+}
+
+ClearPlan Framebuffer::plan_clear(const Rect& r0, const ClearValues& v) {
+  ClearPlan p;
+  p.r = intersect(r0, bounds());
+  if (p.r.width == 0 || p.r.height == 0) return p;
+  const bool all = covers_all(p.r);
+  if (v.color) {
+    p.color = true;
+    p.color_mask = v.color_mask;
+    const bool every_channel = v.color_mask[0] && v.color_mask[1] && v.color_mask[2] && v.color_mask[3];
+    // A clear of every pixel and channel writes every value: the owed fill is
+    // not needed (any other clear keeps some zeros, so it is done first).
+    if (all && every_channel) unfilled_ &= ~kColor;
+    else fill_zero(kColor);
+    // Converted once with store_color_value's rule (a code, or a clamped
+    // binary32/64 value); every pixel gets the same bits.
+    for (std::size_t c = 0; c < 4; ++c) {
+      if (fmt_.float_color()) p.values[c] = color_float_of(v.rgba[c]);
+      else p.codes[c] = color_code_of(v.rgba[c]);
+    }
+  }
+  if (v.stencil && has_stencil()) {
+    p.stencil = true;
+    const std::uint32_t m = v.stencil_mask & stencil_max();
+    p.stencil_mask = static_cast<std::uint8_t>(m);
+    p.stencil_bits = static_cast<std::uint8_t>(v.stencil_value & m);
     // Owed zeros under every pixel and every written bit: (0 & ~m) | (value & m)
     // everywhere (the bits above stencil_bits stay 0, as in a filled buffer).
-    unfilled_ &= ~kStencil;
-    std::fill(stencil_.begin(), stencil_.end(), static_cast<std::uint8_t>(value & m));
-    return;
+    p.stencil_overwrite = (unfilled_ & kStencil) && all && m == stencil_max();
+    if (p.stencil_overwrite) unfilled_ &= ~kStencil;
+    else fill_zero(kStencil);
   }
-  std::uint8_t* const base = stencil().data();
-  for (int y = r.y; y < r.y + r.height; ++y) {
-    std::uint8_t* s = base + index(r.x, y);
-    for (int x = 0; x < r.width; ++x)
-      s[x] = static_cast<std::uint8_t>((s[x] & ~m) | (value & m));  // §4.2.2: writes through StencilMask
+  if (v.depth && has_depth()) {
+    p.depth = true;
+    depth_changed();
+    p.depth_code = unorm_from_double(std::clamp(v.depth01, 0.0, 1.0), fmt_.depth_bits);
+    if (all) unfilled_ &= ~kDepth;  // (as the colour)
+    else fill_zero(kDepth);
   }
+  return p;
 }
 
-void Framebuffer::clear_depth(const Rect& r0, double depth01) {
-  if (!has_depth()) return;
-  depth_changed();
-  const Rect r = intersect(r0, bounds());
-  const std::uint32_t code = unorm_from_double(std::clamp(depth01, 0.0, 1.0), fmt_.depth_bits);
-  if (covers_all(r)) unfilled_ &= ~kDepth;  // (as clear_color)
-  std::uint32_t* const base = depth_untracked();
-  for (int y = r.y; y < r.y + r.height; ++y) std::fill_n(base + index(r.x, y), r.width, code);
+void Framebuffer::clear_rows(const ClearPlan& p, int y0, int y1) {
+  y0 = std::max(y0, p.r.y);
+  y1 = std::min(y1, p.r.y + p.r.height);
+  // Row by row: a row of the rectangle is contiguous (4 components per pixel in
+  // the colour buffer).
+  const std::size_t row = static_cast<std::size_t>(p.r.width);
+  for (int y = y0; y < y1; ++y) {
+    const std::size_t i0 = index(p.r.x, y);
+    if (p.color) {
+      if (fmt_.float_color()) copy_masked(p.values.data(), p.color_mask, values_.data() + 4 * i0, 4 * row);
+      else copy_masked(p.codes.data(), p.color_mask, codes_.data() + 4 * i0, 4 * row);
+    }
+    if (p.stencil) {
+      std::uint8_t* s = stencil_.data() + i0;
+      if (p.stencil_overwrite) std::fill_n(s, row, p.stencil_bits);
+      else
+        for (std::size_t x = 0; x < row; ++x)
+          s[x] = static_cast<std::uint8_t>((s[x] & ~p.stencil_mask) | p.stencil_bits);  // §4.2.2: through StencilMask
+    }
+    if (p.depth) std::fill_n(depth_.data() + i0, row, p.depth_code);
+  }
 }
 
 }  // namespace ffsim

@@ -42,6 +42,28 @@ struct Rect {
   int x = 0, y = 0, width = 0, height = 0;  // window coordinates, bottom-left origin
 };
 
+// What one glClear writes (GL 1.2.1 §4.2.3), for Framebuffer::clear.
+struct ClearValues {
+  bool color = false, stencil = false, depth = false;  // the buffers cleared
+  std::array<double, 4> rgba{};                        // clamped clear colour
+  std::array<bool, 4> color_mask{true, true, true, true};
+  std::uint32_t stencil_value = 0, stencil_mask = ~0u;  // clear value, StencilMask
+  double depth01 = 1;                                   // clamped clear depth
+};
+
+// A clear ready to be written by rows (Framebuffer::plan_clear).
+struct ClearPlan {
+  Rect r;  // clipped to the framebuffer; empty: nothing to write
+  bool color = false, stencil = false, depth = false;
+  std::array<bool, 4> color_mask{};
+  std::array<std::uint16_t, 4> codes{};  // fixed colour: the clear colour's codes
+  std::array<double, 4> values{};        // float colour: its stored binary32/64 values
+  std::uint8_t stencil_bits = 0;         // value & mask: the bits written
+  std::uint8_t stencil_mask = 0;         // StencilMask & stencil_max
+  bool stencil_overwrite = false;        // owed zeros under every bit: written, not merged
+  std::uint32_t depth_code = 0;          // the clear depth as a depth code
+};
+
 class Framebuffer {
  public:
   // Validates the format (sizes 1..16384 per side, at most 2^26 pixels; bit widths
@@ -93,13 +115,28 @@ class Framebuffer {
   // Store a real value: clamp to [0,1] and round (unorm_from_double) for fixed
   // color; round to binary32 for Float32; as is for Float64 (still clamped to [0,1]).
   void store_color_value(int x, int y, int c, double v);
+  // That rule for one value: the code (fixed colour) or the stored value (float).
+  std::uint16_t color_code_of(double v) const;
+  double color_float_of(double v) const;
 
   // glClear semantics (GL 1.2.1 §4.2.3): the rectangle is already intersected with
   // the scissor box by the caller; per-channel color mask; stencil write mask.
   // `rgba` is the clamped clear color; stored with store_color_value's rule.
+  void clear(const Rect& r, const ClearValues& v) {
+    const ClearPlan p = plan_clear(r, v);
+    clear_rows(p, p.r.y, p.r.y + p.r.height);
+  }
   void clear_color(const Rect& r, const std::array<double, 4>& rgba, const std::array<bool, 4>& mask);
   void clear_stencil(const Rect& r, std::uint32_t value, std::uint32_t writemask);
   void clear_depth(const Rect& r, double depth01);
+  // clear() in two steps, so that several threads can write the rows
+  // (Context::clear, docs/performance.md 27.1): plan_clear settles the owed zero
+  // fills and converts the values (once, on one thread); clear_rows writes the
+  // rows [y0, y1) of the plan's rectangle. Calls of clear_rows on disjoint row
+  // ranges may run concurrently; together over every row they write what
+  // clear() writes.
+  ClearPlan plan_clear(const Rect& r, const ClearValues& v);
+  void clear_rows(const ClearPlan& p, int y0, int y1);
 
   Rect bounds() const { return {0, 0, fmt_.width, fmt_.height}; }
 

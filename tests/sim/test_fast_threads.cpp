@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <memory>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -386,7 +387,7 @@ TEST_CASE("fast threads: the terrain trace is identical at 1 and 2 threads and i
 #endif
   const trace::Program prog = trace::load_trace_file(std::string(FFSIM_SOURCE_DIR) + "/traces/kautz-geforce-aa.trace", lo);
   std::string hashes[2];
-  std::uint64_t fragments[2] = {0, 0}, batches[2] = {0, 0}, triangles[2] = {0, 0};
+  std::uint64_t fragments[2] = {0, 0}, batches[2] = {0, 0}, triangles[2] = {0, 0}, clears[2] = {0, 0};
   for (int threads : {1, 2}) {
     Context ctx(prog.profile, prog.width, prog.height);
     trace::RunOptions ro;
@@ -402,6 +403,7 @@ TEST_CASE("fast threads: the terrain trace is identical at 1 and 2 threads and i
     fragments[threads - 1] = ctx.fragments_written();
     batches[threads - 1] = ctx.split_batches();
     triangles[threads - 1] = ctx.split_triangles();
+    clears[threads - 1] = ctx.split_clears();
   }
   CHECK(hashes[1] == hashes[0]);
   CHECK(fragments[1] == fragments[0]);
@@ -412,4 +414,68 @@ TEST_CASE("fast threads: the terrain trace is identical at 1 and 2 threads and i
   // Merged strips: a strip alone is 60 triangles; the deferred batches of a pass
   // hold all 30 strips (1800 triangles, under the 2048 cap).
   CHECK(triangles[1] > 1000 * batches[1]);
+  // Its one glClear (of every buffer) is written in bands at 2 threads.
+  CHECK(clears[0] == 0);
+  CHECK(clears[1] == 1);
+}
+
+TEST_CASE("fast threads: glClear in row bands on 2 and 3 threads == one thread, between draws, all profiles") {
+  // Context::clear's rows split over the pool (docs/performance.md 27.1): random
+  // scenes, then clears of random buffers, values, colour/stencil/depth masks
+  // and scissor boxes (the whole window, a part, or none of it), each followed
+  // by a draw, on fresh framebuffers (owed zero fills) and written ones. Every
+  // clear is compared; the split must happen, and never on one thread.
+  std::uint64_t splits = 0;
+  SceneOptions opt;
+  opt.triangles = 2;
+  for (const char* profile : kFastProfiles)
+    for (std::uint32_t seed = 700; seed < 703; ++seed) {
+      Context one(profile_named(profile), 96, 64);
+      std::vector<std::unique_ptr<Context>> many;
+      for (int threads : {2, 3}) {
+        many.push_back(std::make_unique<Context>(profile_named(profile), 96, 64));
+        many.back()->set_threads(threads);
+        many.back()->set_split_fragments(256);
+      }
+      const bool fresh = seed == 700;  // first clear on owed buffers
+      SceneRng r(seed);
+      for (int step = 0; step < 8; ++step) {
+        const bool scene = step > 0 || !fresh;
+        const std::uint32_t scene_seed = seed * 100 + static_cast<std::uint32_t>(step);
+        const int which = r.i(0, 7);  // bits: colour, stencil, depth
+        const bool scissor = r.b(50);
+        const int sx = r.i(-10, 90), sy = r.i(-10, 60), sw = r.i(0, 100), sh = r.i(0, 70);
+        const std::array<bool, 4> cm{r.b(80), r.b(80), r.b(80), r.b(80)};
+        const std::uint32_t sm = r.b(50) ? 0xFFu : static_cast<std::uint32_t>(r.i(0, 255));
+        const bool dm = r.b(80);
+        const double cr = r.d(0, 1), cg = r.d(0, 1), ca = r.d(0, 1), cd = r.d(0, 1);
+        const int cs = r.i(0, 255);
+        auto apply = [&](Context& c) {
+          if (scene) draw_random_scene(c, scene_seed, opt);
+          c.disable(gl::SCISSOR_TEST);
+          if (scissor) c.enable(gl::SCISSOR_TEST), c.scissor(sx, sy, sw, sh);
+          c.colorMask(cm[0], cm[1], cm[2], cm[3]);
+          c.stencilMask(sm);
+          c.depthMask(dm);
+          c.clearColor(cr, cg, 0.25, ca);
+          c.clearStencil(cs);
+          c.clearDepth(cd);
+          c.clear(((which & 1) ? gl::COLOR_BUFFER_BIT : 0u) | ((which & 2) ? gl::STENCIL_BUFFER_BIT : 0u) |
+                  ((which & 4) ? gl::DEPTH_BUFFER_BIT : 0u));
+          c.colorMask(true, true, true, true);
+          c.stencilMask(0xFF);
+          c.depthMask(true);
+          c.disable(gl::SCISSOR_TEST);
+        };
+        apply(one);
+        for (const auto& c : many) {
+          apply(*c);
+          INFO("profile ", profile, " seed ", seed, " step ", step, " threads ", c->threads());
+          REQUIRE(buffer_hashes(*c) == buffer_hashes(one));
+        }
+      }
+      CHECK(one.split_clears() == 0);
+      for (const auto& c : many) splits += c->split_clears();
+    }
+  CHECK(splits > 50);
 }

@@ -1,7 +1,9 @@
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <array>
 #include <random>
+#include <vector>
 
 #include "pipeline/number/unorm.h"
 #include "sim/context.h"
@@ -229,4 +231,61 @@ TEST_CASE("framebuffer: a new buffer reads as zero, whichever clears or readers 
   }
   CHECK(whole > 100);
   CHECK(partial > 100);
+}
+
+TEST_CASE("framebuffer: a planned clear written in row ranges, in any order, equals the clear at once") {
+  // plan_clear + clear_rows (what Context::clear splits over threads) against
+  // clear() on a copy: random formats, rectangles (clipped or not), masks,
+  // fresh buffers (owed fills) or written ones; the rows cut into 1-6 ranges
+  // written in a random order, some ranges reaching past the rectangle.
+  std::mt19937 rng(20261205);
+  auto pick = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+  int cut = 0;
+  for (int round = 0; round < 400; ++round) {
+    FramebufferFormat f;
+    f.width = pick(1, 30);
+    f.height = pick(1, 24);
+    f.color_arith = std::array{Arithmetic::Fixed, Arithmetic::Fixed, Arithmetic::Float32, Arithmetic::Float64}[pick(0, 3)];
+    f.color_bits = pick(1, 12);
+    f.stencil_bits = pick(0, 8);
+    f.depth_bits = std::array{0, 16, 24}[pick(0, 2)];
+    Framebuffer whole(f);
+    if (pick(0, 1) == 1) {  // written contents (else the zero fills are owed)
+      for (std::size_t i = 0; i < whole.codes().size(); ++i)
+        whole.codes()[i] = static_cast<std::uint16_t>((i * 7) % (whole.color_max() + 1));
+      for (std::size_t i = 0; i < whole.values().size(); ++i) whole.values()[i] = static_cast<double>(i % 5) / 8;
+      for (std::size_t i = 0; i < whole.stencil().size(); ++i)
+        whole.stencil()[i] = static_cast<std::uint8_t>((i * 3) % (whole.stencil_max() + 1));
+      for (std::size_t i = 0; i < whole.depth().size(); ++i) whole.depth()[i] = static_cast<std::uint32_t>(i * 11);
+    }
+    Framebuffer rows = whole;
+    const bool full = pick(0, 2) == 0;
+    const Rect r = full ? Rect{pick(-2, 0), pick(-2, 0), f.width + 2, f.height + 2}
+                        : Rect{pick(-6, f.width), pick(-6, f.height), pick(0, f.width + 4), pick(0, f.height + 4)};
+    ClearValues v;
+    v.color = pick(0, 3) > 0;
+    v.stencil = pick(0, 3) > 0;
+    v.depth = pick(0, 3) > 0;
+    v.rgba = {pick(0, 8) / 8.0, pick(0, 8) / 8.0, 0.3, pick(0, 1) * 1.0};
+    v.color_mask = {pick(0, 3) > 0, pick(0, 3) > 0, pick(0, 3) > 0, pick(0, 3) > 0};
+    v.stencil_value = static_cast<std::uint32_t>(pick(0, 1023));
+    v.stencil_mask = pick(0, 1) == 1 ? ~0u : static_cast<std::uint32_t>(pick(0, 255));
+    v.depth01 = pick(0, 4) / 4.0;
+    CAPTURE(round);
+    whole.clear(r, v);
+    const ClearPlan p = rows.plan_clear(r, v);
+    std::vector<int> cuts{p.r.y - pick(0, 2), p.r.y + p.r.height + pick(0, 2)};
+    for (int k = pick(0, 5); k > 0; --k) cuts.push_back(p.r.y + pick(0, std::max(0, p.r.height)));
+    std::sort(cuts.begin(), cuts.end());
+    std::vector<std::array<int, 2>> ranges;
+    for (std::size_t i = 0; i + 1 < cuts.size(); ++i) ranges.push_back({cuts[i], cuts[i + 1]});
+    std::shuffle(ranges.begin(), ranges.end(), rng);
+    for (const auto& [y0, y1] : ranges) rows.clear_rows(p, y0, y1);
+    cut += ranges.size() > 2;
+    CHECK(rows.codes() == whole.codes());
+    CHECK(rows.values() == whole.values());
+    CHECK(rows.stencil() == whole.stencil());
+    CHECK(rows.depth() == whole.depth());
+  }
+  CHECK(cut > 150);
 }
