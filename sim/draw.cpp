@@ -432,7 +432,7 @@ void Context::shade_group_runs(const DrawSetup& ds, FragmentSpan& span, int band
   const FragmentPlanKey& key = fragment_current_plan_->key;
   ListedDepthTest dt;
   RecordedGroup::DepthComparisons* memo = nullptr;
-  if (g.from && key.depth && !key.stencil && g.depth == g.from->depth.data() && g.pixel == g.from->pixel.data()) {
+  if (g.from && depth_test_alone(key) && g.depth == g.from->depth.data() && g.pixel == g.from->pixel.data()) {
     memo = &g.from->depth_test;
     if (memo->epoch == fb_.depth_epoch() && memo->func == key.depth_func && (!memo->would_store || !key.depth_write))
       dt.known = memo->cmp.data();

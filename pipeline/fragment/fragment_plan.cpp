@@ -722,20 +722,11 @@ struct DepthOutcome {
 // branch free, so the depth loads of a chunk overlap instead of waiting behind
 // mispredicted test results. A failing or dead fragment rewrites the stored
 // depth unchanged (its own pixel: no other fragment of the chunk touches it).
-// The alpha test on fixed codes: fragment j's alpha is in[4j + 3].
-void alpha_test_fixed(GLenum func, const std::uint16_t* in, std::uint32_t ref, int n, std::uint8_t* alive) {
-  // (by value: a byte store may alias anything, so captured references would be
-  // loaded again for every fragment)
-  with_test_func<std::uint32_t>(func, [=](auto op) {
-    for (int j = 0; j < n; ++j) alive[j] = op(in[4 * j + 3], ref);
-  });
-}
-
 #if defined(__AVX2__) && defined(__BMI2__)
 // test_func(F, a, b) on eight unsigned 32-bit lanes: all ones where it holds.
 // (AVX2 compares signed lanes only: a <= b is min_epu32(a, b) == a.)
 template <GLenum F>
-inline __m256i depth_lanes(__m256i a, __m256i b) {
+inline __m256i test_lanes(__m256i a, __m256i b) {
   const __m256i ones = _mm256_set1_epi32(-1);
   const __m256i le = _mm256_cmpeq_epi32(_mm256_min_epu32(a, b), a);
   const __m256i eq = _mm256_cmpeq_epi32(a, b);
@@ -745,8 +736,67 @@ inline __m256i depth_lanes(__m256i a, __m256i b) {
   else if constexpr (F == gl::GREATER) return _mm256_xor_si256(le, ones);
   else if constexpr (F == gl::NOTEQUAL) return _mm256_xor_si256(eq, ones);
   else if constexpr (F == gl::GEQUAL) return _mm256_or_si256(_mm256_xor_si256(le, ones), eq);
+  else if constexpr (F == gl::NEVER) return _mm256_setzero_si256();
   else return ones;  // ALWAYS
 }
+
+// f(std::integral_constant<GLenum, F>) for the eight functions; false for any
+// other token (it reaches no caller: keys hold valid functions).
+template <class Fn>
+bool with_test_lanes(GLenum func, Fn&& f) {
+  switch (func) {
+    case gl::NEVER: f(std::integral_constant<GLenum, gl::NEVER>{}); return true;
+    case gl::LESS: f(std::integral_constant<GLenum, gl::LESS>{}); return true;
+    case gl::EQUAL: f(std::integral_constant<GLenum, gl::EQUAL>{}); return true;
+    case gl::LEQUAL: f(std::integral_constant<GLenum, gl::LEQUAL>{}); return true;
+    case gl::GREATER: f(std::integral_constant<GLenum, gl::GREATER>{}); return true;
+    case gl::NOTEQUAL: f(std::integral_constant<GLenum, gl::NOTEQUAL>{}); return true;
+    case gl::GEQUAL: f(std::integral_constant<GLenum, gl::GEQUAL>{}); return true;
+    case gl::ALWAYS: f(std::integral_constant<GLenum, gl::ALWAYS>{}); return true;
+    default: return false;
+  }
+}
+
+// The alpha test on eight fragments' fixed codes at a time: each fragment's
+// alpha (its 16-bit code at 4j + 3) shifted down in its 64-bit lane, two
+// registers' lanes interleaved into 32-bit lanes and put back in order, then
+// a_s OP ref as test_func. Returns the fragments done (a multiple of 8).
+template <GLenum F>
+int alpha_test_fixed8(const std::uint16_t* in, std::uint32_t ref, int n, std::uint8_t* alive) {
+  const __m256i r = _mm256_set1_epi32(static_cast<int>(ref));
+  const __m256i order = _mm256_setr_epi32(0, 2, 4, 6, 1, 3, 5, 7);
+  int j = 0;
+  for (; j + 8 <= n; j += 8) {
+    const __m256i lo = _mm256_srli_epi64(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(in + 4 * j)), 48);
+    const __m256i hi = _mm256_srli_epi64(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(in + 4 * j + 16)), 48);
+    // lo's 32-bit lanes: a0 0 a1 0 | a2 0 a3 0; hi's a4..a7 likewise. Or'd with hi
+    // one lane up: a0 a4 a1 a5 | a2 a6 a3 a7, which `order` sorts.
+    const __m256i a = _mm256_permutevar8x32_epi32(_mm256_or_si256(lo, _mm256_slli_epi64(hi, 32)), order);
+    const auto bits = static_cast<unsigned>(_mm256_movemask_ps(_mm256_castsi256_ps(test_lanes<F>(a, r))));
+    const std::uint64_t a8 = _pdep_u64(bits, 0x0101010101010101ull);  // one byte 0 or 1 per fragment
+    std::memcpy(alive + j, &a8, sizeof a8);
+  }
+  return j;
+}
+#endif
+
+// The alpha test on fixed codes: fragment j's alpha is in[4j + 3].
+void alpha_test_fixed(GLenum func, const std::uint16_t* in, std::uint32_t ref, int n, std::uint8_t* alive) {
+#if defined(__AVX2__) && defined(__BMI2__)
+  int done = 0;
+  with_test_lanes(func, [&](auto f) { done = alpha_test_fixed8<decltype(f)::value>(in, ref, n, alive); });
+  in += 4 * static_cast<std::ptrdiff_t>(done);
+  alive += done;
+  n -= done;
+#endif
+  // (by value: a byte store may alias anything, so captured references would be
+  // loaded again for every fragment)
+  with_test_func<std::uint32_t>(func, [=](auto op) {
+    for (int j = 0; j < n; ++j) alive[j] = op(in[4 * j + 3], ref);
+  });
+}
+
+#if defined(__AVX2__) && defined(__BMI2__)
 
 // depth_only on listed pixels, eight fragments at a time: the stored depths
 // gathered, the test and `alive` branch free, and the stores only where a depth
@@ -769,7 +819,7 @@ int depth_only_listed8(bool write, const std::uint32_t* z, std::uint32_t* depth,
     std::memcpy(&a8, alive + j, sizeof a8);
     const __m256i live = _mm256_cmpgt_epi32(_mm256_cvtepu8_epi32(_mm_cvtsi64_si128(static_cast<long long>(a8))),
                                             _mm256_setzero_si256());
-    const __m256i test = depth_lanes<F>(zz, zb);
+    const __m256i test = test_lanes<F>(zz, zb);
     const __m256i pass = _mm256_and_si256(live, test);
     const auto bits = static_cast<unsigned>(_mm256_movemask_ps(_mm256_castsi256_ps(pass)));
     a8 = _pdep_u64(bits, 0x0101010101010101ull);  // one byte 0 or 1 per fragment
@@ -861,6 +911,22 @@ void depth_only_stage(GLenum func, bool write, const std::uint32_t* z, std::uint
   }
 }
 
+// The stencil test of a plan whose three operations are KEEP (stencil_ops_kept):
+// a failing fragment's `alive` is cleared; the buffer is only read.
+template <class Px>
+void stencil_test_kept(const FragmentPlanKey& key, const FragmentConstants& k, const std::uint8_t* S, Px pixel, int n,
+                       std::uint8_t* alive) {
+  const FragmentConstants::StencilTables& st = k.stencil_tables;
+  if (st.valid && st.func == key.stencil_func) {
+    const std::uint8_t* const pass = st.pass.data();
+    for (int j = 0; j < n; ++j) alive[j] &= pass[S[pixel(j)]];
+    return;
+  }
+  const std::uint32_t vm = k.stencil_value_mask, ref_m = k.stencil_ref & vm;
+  for (int j = 0; j < n; ++j)
+    alive[j] &= test_func<std::uint32_t>(key.stencil_func, ref_m, S[pixel(j)] & vm) ? 1 : 0;
+}
+
 template <class Px>
 void stencil_depth_stage(const FragmentPlanKey& key, const FragmentConstants& k, const std::uint32_t* z,
                          const FragmentBuffers& b, Px pixel, int n, std::uint8_t* alive, DepthOutcome& out) {
@@ -880,14 +946,40 @@ void stencil_depth_stage(const FragmentPlanKey& key, const FragmentConstants& k,
     const std::uint8_t *const spass_of = st.pass.data(), *const sfail = st.after_sfail.data();
     const std::uint8_t *const dpfail = st.after_dpfail.data(), *const dppass = st.after_dppass.data();
     if (!key.depth) {  // without a branch per fragment: a dead fragment keeps the stored value
-      for (int j = 0; j < n; ++j) {
+      auto one = [=](int j) {
         const std::size_t p = pixel(j);
         const std::uint8_t old = S[p];
         const bool a = alive[j] != 0, pass = spass_of[old] != 0;
         const std::uint8_t next = pass ? dppass[old] : sfail[old];
         S[p] = a ? next : old;
         alive[j] = a && pass;
+      };
+      int j = 0;
+#if defined(__AVX2__)
+      if constexpr (std::is_same_v<Px, RowPixels>) {
+        // A row's 32 stored values at once when they are all equal (a cleared or
+        // marked region, the common case): the tables' entries for that value,
+        // the store selected by `alive`. The same values as `one` on each.
+        std::uint8_t* const row = S + pixel.first;
+        const __m256i zero = _mm256_setzero_si256();
+        for (; j + 32 <= n; j += 32) {
+          const __m256i old = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(row + j));
+          const std::uint8_t v = row[j];
+          if (_mm256_movemask_epi8(_mm256_cmpeq_epi8(old, _mm256_set1_epi8(static_cast<char>(v)))) != -1) {
+            for (int i = j; i < j + 32; ++i) one(i);  // mixed values
+            continue;
+          }
+          const __m256i a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(alive + j));
+          const bool pass = spass_of[v] != 0;
+          const std::uint8_t next = pass ? dppass[v] : sfail[v];
+          const __m256i live = _mm256_cmpgt_epi8(a, zero);  // (alive bytes are 0 or 1)
+          _mm256_storeu_si256(reinterpret_cast<__m256i*>(row + j),
+                              _mm256_blendv_epi8(old, _mm256_set1_epi8(static_cast<char>(next)), live));
+          if (!pass) _mm256_storeu_si256(reinterpret_cast<__m256i*>(alive + j), zero);
+        }
       }
+#endif
+      for (; j < n; ++j) one(j);
       return;
     }
     // With the depth test, the same selects; the comparison chosen once. A
@@ -992,8 +1084,10 @@ void run_fragment_plan_pixels(const FragmentPlan& plan, const FragmentConstants&
   if (key.arith != Arithmetic::Fixed) throw std::invalid_argument("run_fragment_plan_pixels: fixed colour only");
   if (key.depth && depth == nullptr)
     throw std::invalid_argument("run_fragment_plan_pixels: the depth test is enabled but no depth was given");
-  // The depth test alone may take known comparisons or record them (ListedDepthTest).
-  const bool depth_alone = key.depth && !key.stencil;
+  // The depth test alone may take known comparisons or record them
+  // (ListedDepthTest); a stencil test that writes nothing is then a mask before it.
+  const bool depth_alone = depth_test_alone(key);
+  const bool stencil_mask = depth_alone && key.stencil;
   const std::uint8_t* known = depth_alone && depth_test ? depth_test->known : nullptr;
   std::uint8_t* record = depth_alone && depth_test && !known ? depth_test->record : nullptr;
   DepthOutcome depth_out;
@@ -1004,8 +1098,12 @@ void run_fragment_plan_pixels(const FragmentPlan& plan, const FragmentConstants&
     const ListPixels px{pixel + start};
     std::fill_n(alive, m, std::uint8_t{1});
     if (key.alpha_func != 0) alpha_test_fixed(key.alpha_func, in, k.alpha_ref_code, m, alive);  // A_s OP ref
+    if (stencil_mask) stencil_test_kept(key, k, b.stencil, px, m, alive);
     if (depth_alone && known) {  // the comparisons known: the buffer is neither read nor written
       for (int j = 0; j < m; ++j) alive[j] &= known[start + j];
+    } else if (stencil_mask) {
+      depth_out.cmp = record ? record + start : nullptr;
+      depth_only_stage(key.depth_func, key.depth_write, depth + start, b.depth, px, m, alive, depth_out);
     } else if (key.stencil || key.depth) {
       depth_out.cmp = record ? record + start : nullptr;
       stencil_depth_stage(key, k, key.depth ? depth + start : nullptr, b, px, m, alive, depth_out);

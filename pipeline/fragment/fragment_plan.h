@@ -133,6 +133,17 @@ FragmentPlanKey fragment_plan_key(const FragmentOpsState& s, const FragmentTarge
 FragmentPlan build_fragment_plan(const FragmentPlanKey& key);
 FragmentConstants fragment_constants(const FragmentOpsState& s, const FragmentTarget& t);
 
+// The plan's stencil test writes nothing: its three operations are KEEP (the
+// key holds KEEP for all three when the write mask is 0).
+inline bool stencil_ops_kept(const FragmentPlanKey& key) {
+  return key.sfail == gl::KEEP && key.dpfail == gl::KEEP && key.dppass == gl::KEEP;
+}
+// The depth test is the only stage that writes depth or stencil: no stencil
+// test, or one that writes nothing (then only a mask before the depth test).
+inline bool depth_test_alone(const FragmentPlanKey& key) {
+  return key.depth && (!key.stencil || stencil_ops_kept(key));
+}
+
 // The depth test's comparisons of a list of fragments, to be reused
 // (docs/performance.md 17.1). The depth test alone (no stencil test) makes a
 // fragment survive when it is alive and z OP stored holds: with the same
@@ -142,7 +153,8 @@ FragmentConstants fragment_constants(const FragmentOpsState& s, const FragmentTa
 struct ListedDepthTest {
   // In: the comparisons (1: z OP stored) of an earlier call under exactly those
   // conditions, one byte per fragment. The depth buffer is then not read or
-  // written. Used only when the plan has the depth test and no stencil test.
+  // written. Used only when depth_test_alone(plan key) (a stencil test that
+  // writes nothing is applied before it as a mask).
   const std::uint8_t* known = nullptr;
   // Out, when not `known`: the comparisons of this call into `record` (n bytes),
   // for the depth test alone; `recorded` says whether they were written.

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "fragment_harness.h"
+#include "pipeline/fragment/alpha_test.h"
 
 using namespace ffsim;
 using namespace ffsim::test;
@@ -505,27 +506,128 @@ TEST_CASE("plan vs full path: listed pixels, the depth test alone, every functio
   CHECK(compared == 3 * 8 * 2 * 2 * 4);
 }
 
+TEST_CASE("plan vs full path: the alpha test on long spans and listed pixels, every function, every 8-bit code, 16-bit codes") {
+  // The alpha test eight fragments at a time (fragment_plan.cpp alpha_test_fixed8,
+  // where the machine has AVX2) and its scalar tail: spans of 0 to 300 fragments
+  // holding every alpha code (8-bit target) or codes around the reference and the
+  // ends of the range (16-bit target), each function, several references.
+  std::mt19937 rng(2718);
+  int compared = 0;
+  for (const int bits : {8, 16}) {
+    const FragmentTarget t{320, 2, Arithmetic::Fixed, bits, 0, 0};
+    const std::uint32_t M = (1u << bits) - 1;
+    for (const GLenum func : kFuncs)
+      for (const double ref : {0.0, 1.0, 0.5, 77.0 / 255.0, 0.9999}) {
+        FragmentOpsState s;
+        s.alpha = {true, func, ref};
+        const std::uint32_t rc = alpha_ref_code(ref, bits);
+        for (const int count : {0, 7, 8, 9, 31, 256, 257, 300}) {
+          std::vector<std::array<std::uint16_t, 4>> frags;
+          for (int i = 0; i < count; ++i) {
+            const std::uint32_t near[] = {0, M, rc, rc + 1, rc - 1, static_cast<std::uint32_t>(i)};
+            const std::uint32_t a = bits == 8 ? static_cast<std::uint32_t>(i) & M : near[rng() % 6] & M;
+            frags.push_back({static_cast<std::uint16_t>(rng() & M), static_cast<std::uint16_t>(i & M),
+                             static_cast<std::uint16_t>(rng() & M), static_cast<std::uint16_t>(a)});
+          }
+          Buffers b(t);
+          randomize(rng, b);
+          INFO("bits ", bits, " func ", func, " ref ", ref, " count ", count);
+          run_both(s, b, span_codes(1, static_cast<int>(rng() % 8), frags));
+          Buffers p = b, f = b;
+          REQUIRE(pixels_match_full(rng, s, p, f, false));
+          ++compared;
+        }
+      }
+  }
+  CHECK(compared == 2 * 8 * 5 * 8);
+}
+
+TEST_CASE("plan vs full path: the stencil test without depth on long rows, uniform and mixed 32-pixel blocks") {
+  // The stencil stage on a row without the depth test (fragment_plan.cpp: a block
+  // of 32 equal stored values takes the tables' entries at once, where the
+  // machine has AVX2; other blocks go fragment by fragment): every function,
+  // every sfail and dppass operation, 8 and 3 stencil bits, the alpha test before
+  // it or not, the scissor box or not. The stored row is runs of equal values
+  // (most of them 32 or more long) so that both kinds of block occur; the test
+  // counts the blocks that are uniform.
+  std::mt19937 rng(31415);
+  long uniform_blocks = 0, mixed_blocks = 0;
+  int compared = 0;
+  for (const int sbits : {8, 3}) {
+    const FragmentTarget t{300, 3, Arithmetic::Fixed, 8, sbits, sbits == 8 ? 0 : 24};
+    const std::uint32_t smax = (1u << sbits) - 1;
+    for (const GLenum func : kFuncs)
+      for (const GLenum sfail : kOps)
+        for (const GLenum dppass : kOps) {
+          FragmentOpsState s = random_state(rng, 4u | (rng() % 2 ? 2u : 0u) | (rng() % 4 == 0 ? 1u : 0u), t);
+          s.stencil.func = func;
+          s.stencil.sfail = sfail;
+          s.stencil.dppass = dppass;
+          s.depth.enabled = false;
+          if (rng() % 2) s.stencil_writemask = 0xFF;
+          Buffers b(t);
+          randomize(rng, b);
+          for (int y = 0; y < t.height; ++y)
+            for (int x = 0; x < t.width;) {
+              const std::uint32_t vals[] = {0, 1, 2, smax, static_cast<std::uint32_t>(rng()) & smax};
+              const auto v = static_cast<std::uint8_t>(vals[rng() % 5]);
+              const int len = rng() % 4 == 0 ? 1 + static_cast<int>(rng() % 8) : 32 + static_cast<int>(rng() % 90);
+              for (int i = 0; i < len && x < t.width; ++i, ++x) b.stencil[b.px(x, y)] = v;
+            }
+          FragmentSpan sp = random_span(rng, b);
+          sp.y = static_cast<int>(rng() % t.height);
+          sp.x0 = static_cast<int>(rng() % 9) - 4;
+          sp.count = 200 + static_cast<int>(rng() % 110);
+          sp.codes.resize(4 * static_cast<std::size_t>(sp.count));
+          for (std::size_t i = 0; i < sp.codes.size(); ++i) sp.codes[i] = static_cast<std::uint16_t>(rng() % 3 ? 0 : rng() & 255);
+          sp.depth.assign(static_cast<std::size_t>(sp.count), 0);
+          // The blocks as the planned path cuts them (chunks of 256 from the
+          // first fragment inside the write rectangle, blocks of 32 from each
+          // chunk's start).
+          const FragmentConstants k = fragment_constants(s, t);
+          const int begin = std::max(sp.x0, k.rect.x0), end = std::min(sp.x0 + sp.count, k.rect.x1);
+          if (sp.y >= k.rect.y0 && sp.y < k.rect.y1)
+            for (int c = begin; c < end; c += 256)
+              for (int x = c; x + 32 <= std::min(c + 256, end); x += 32) {
+                bool same = true;
+                for (int i = 1; i < 32; ++i) same &= b.stencil[b.px(x + i, sp.y)] == b.stencil[b.px(x, sp.y)];
+                ++(same ? uniform_blocks : mixed_blocks);
+              }
+          INFO("stencil bits ", sbits, " func ", func, " sfail ", sfail, " dppass ", dppass);
+          run_both(s, b, sp);
+          ++compared;
+        }
+  }
+  MESSAGE("uniform blocks " << uniform_blocks << ", mixed blocks " << mixed_blocks);
+  CHECK(compared == 2 * 8 * 8 * 8);
+  CHECK(uniform_blocks > 2000);
+  CHECK(mixed_blocks > 1000);
+}
+
 TEST_CASE("listed pixels: the depth test's comparisons recorded, and reused without the depth buffer (ListedDepthTest)") {
   // run_fragment_plan_pixels records each fragment's z OP stored (alive or not),
   // whether a fragment passing it has z != stored, and whether a depth changed:
   // checked against the comparisons computed here from the buffer before the
   // call, every function, with and without depth writes, the alpha test and the
-  // stencil test (which records nothing), fragment counts with chunk tails. Given
+  // stencil test (which records nothing when it writes, and is a mask before the
+  // recorded comparisons when its three operations are KEEP), fragment counts
+  // with chunk tails. Given
   // the comparisons as known (when nothing would be stored), the same call leaves
   // the colour and stencil as without them and neither reads nor writes the
   // depth buffer (a poisoned one stays as it was, and changes nothing).
   std::mt19937 rng(779);
   const FragmentTarget t{40, 20, Arithmetic::Fixed, 8, 8, 24};
-  int recorded = 0, would_store = 0, reused = 0;
+  int recorded = 0, would_store = 0, reused = 0, reused_under_stencil = 0;
   for (const GLenum func : kFuncs)
     for (const bool mask : {false, true})
       for (const bool alpha : {false, true})
-        for (const bool stencil : {false, true})
+        for (const int stencil : {0, 1, 2})  // none, random operations, all three KEEP
           for (int rep = 0; rep < 6; ++rep) {
             INFO("func ", func, " mask ", mask, " alpha ", alpha, " stencil ", stencil, " rep ", rep);
             FragmentOpsState s = random_state(rng, 8u | (alpha ? 2u : 0u) | (stencil ? 4u : 0u), t);
             s.depth.func = func;
             s.depth_mask = mask;
+            if (stencil == 2) s.stencil.sfail = s.stencil.dpfail = s.stencil.dppass = gl::KEEP;
             const FragmentPlan plan = plan_of(s, t);
             const FragmentConstants k = fragment_constants(s, t);
             std::vector<std::uint32_t> pixel(static_cast<std::size_t>(t.width * t.height));
@@ -543,7 +645,13 @@ TEST_CASE("listed pixels: the depth test's comparisons recorded, and reused with
             dt.record = cmp.data();
             run_fragment_plan_pixels(plan, k, frags.codes.data(), frags.depth.data(), pixel.data(), n, rec.view(), &dt);
             REQUIRE(rec.same(plain));
-            const bool depth_alone = plan.key.depth && !plan.key.stencil && !plan.key.nothing;
+            if (stencil == 2) {  // (the stencil mask then the depth test: as the full path)
+              Buffers p = before, f = before;
+              REQUIRE(pixels_match_full(rng, s, p, f, false));
+            }
+            // (the depth test with no stencil test, or one whose operations are all KEEP)
+            const bool depth_alone = depth_test_alone(plan.key) && !plan.key.nothing;
+            if (stencil == 2) CHECK(depth_alone == plan.key.depth);
             CHECK(dt.recorded == depth_alone);
             const bool changed = plain.depth != before.depth;
             if (!depth_alone) {
@@ -574,11 +682,14 @@ TEST_CASE("listed pixels: the depth test's comparisons recorded, and reused with
             CHECK_FALSE(kd.stored);
             CHECK_FALSE(kd.recorded);
             ++reused;
+            reused_under_stencil += plan.key.stencil;
           }
-  MESSAGE("recorded " << recorded << ", would store " << would_store << ", reused " << reused);
-  CHECK(recorded > 100);
-  CHECK(would_store > 100);
-  CHECK(reused > 50);
+  MESSAGE("recorded " << recorded << ", would store " << would_store << ", reused " << reused << " (under a stencil test "
+                      << reused_under_stencil << ")");
+  CHECK(recorded > 150);
+  CHECK(would_store > 150);
+  CHECK(reused > 75);
+  CHECK(reused_under_stencil > 25);
   // run_fragment_plan on row spans reports a changed depth exactly for the depth
   // test alone, and whenever one changed otherwise.
   const FragmentTarget r{16, 3, Arithmetic::Fixed, 8, 8, 24};
