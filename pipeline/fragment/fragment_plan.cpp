@@ -873,18 +873,11 @@ void depth_only_stage(GLenum func, bool write, const std::uint32_t* z, std::uint
                       std::uint8_t* alive, DepthOutcome& out) {
 #if defined(__AVX2__) && defined(__BMI2__)
   if constexpr (std::is_same_v<Px, ListPixels>) {
-    int done = 0;
-    switch (func) {
-      case gl::LESS: done = depth_only_listed8<gl::LESS>(write, z, depth, pixel.pixel, n, alive, out); break;
-      case gl::EQUAL: done = depth_only_listed8<gl::EQUAL>(write, z, depth, pixel.pixel, n, alive, out); break;
-      case gl::LEQUAL: done = depth_only_listed8<gl::LEQUAL>(write, z, depth, pixel.pixel, n, alive, out); break;
-      case gl::GREATER: done = depth_only_listed8<gl::GREATER>(write, z, depth, pixel.pixel, n, alive, out); break;
-      case gl::NOTEQUAL: done = depth_only_listed8<gl::NOTEQUAL>(write, z, depth, pixel.pixel, n, alive, out); break;
-      case gl::GEQUAL: done = depth_only_listed8<gl::GEQUAL>(write, z, depth, pixel.pixel, n, alive, out); break;
-      case gl::ALWAYS: done = depth_only_listed8<gl::ALWAYS>(write, z, depth, pixel.pixel, n, alive, out); break;
-      default: break;  // NEVER (and no other value reaches here): the loop below
-    }
-    // The remaining fragments (fewer than 8; all of them for NEVER) by the loops below.
+    int done = 0;  // (NEVER too: its lanes fail every fragment and store nothing)
+    with_test_lanes(func, [&](auto f) {
+      done = depth_only_listed8<decltype(f)::value>(write, z, depth, pixel.pixel, n, alive, out);
+    });
+    // The remaining fragments (fewer than 8) by the loops below.
     z += done;
     pixel.pixel += done;
     alive += done;
@@ -1101,12 +1094,10 @@ void run_fragment_plan_pixels(const FragmentPlan& plan, const FragmentConstants&
     if (stencil_mask) stencil_test_kept(key, k, b.stencil, px, m, alive);
     if (depth_alone && known) {  // the comparisons known: the buffer is neither read nor written
       for (int j = 0; j < m; ++j) alive[j] &= known[start + j];
-    } else if (stencil_mask) {
-      depth_out.cmp = record ? record + start : nullptr;
-      depth_only_stage(key.depth_func, key.depth_write, depth + start, b.depth, px, m, alive, depth_out);
     } else if (key.stencil || key.depth) {
       depth_out.cmp = record ? record + start : nullptr;
-      stencil_depth_stage(key, k, key.depth ? depth + start : nullptr, b, px, m, alive, depth_out);
+      if (stencil_mask) depth_only_stage(key.depth_func, key.depth_write, depth + start, b.depth, px, m, alive, depth_out);
+      else stencil_depth_stage(key, k, key.depth ? depth + start : nullptr, b, px, m, alive, depth_out);
     }
     if (!plan.write_color) continue;
     if (k.color_max == 255) color_stage_fixed<255>(plan, k, in, b.codes, px, m, alive);
