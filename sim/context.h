@@ -41,6 +41,7 @@
 #include "sim/gl_error.h"
 #include "sim/probe.h"
 #include "sim/raster_cache.h"
+#include "sim/uninitialized_allocator.h"
 #include "sim/upload_cache.h"
 #include "sim/vertex_run_memo.h"
 
@@ -90,7 +91,7 @@ struct WindowVertex;       // sim/draw_span.h
 // The draw path's window vertices: resized without a fill (every member is
 // written before it is read, tcw only for the units the plan samples, the only
 // ones read; sim/draw_span.h, Context::window_attributes_n).
-using WindowVertices = FilledVector<WindowVertex>;  // (sim/raster_cache.h)
+using WindowVertices = FilledVector<WindowVertex>;  // (sim/uninitialized_allocator.h)
 class WorkerPool;          // sim/worker_pool.h
 // Runs for the span path: `count` fragments in `runs` runs of length[0],
 // length[1], ...; run r's weights are first[r] + i·dwdx at its i-th fragment
@@ -914,6 +915,7 @@ class Context {
     const std::uint32_t* depth = nullptr;
     const std::uint32_t* pixel = nullptr;
     const RecordedGroup* from = nullptr;  // a replay's recorded group (its texture coordinates)
+    const RasterRecording* from_recording = nullptr;  // ... and its recording (whose arena keeps its depth comparisons)
   };
   // The group's triangles are sc.triangles; `recorded` (or null) receives the
   // depth codes and pixel list computed.

@@ -418,7 +418,7 @@ void Context::shade_group_runs(const DrawSetup& ds, FragmentSpan& span, int band
   std::uint32_t* depth_out = nullptr;
   if (has_depth && !depth) {
     if (recorded) {
-      recorded->depth.resize(static_cast<std::size_t>(runs.count));
+      recorded->depth = sc.recording->arena.make<std::uint32_t>(static_cast<std::size_t>(runs.count));
       depth_out = recorded->depth.data();
     } else {
       sc.depth.resize(static_cast<std::size_t>(runs.count));
@@ -473,7 +473,7 @@ void Context::shade_group_runs(const DrawSetup& ds, FragmentSpan& span, int band
       // slots, which that run then overwrites; the list holds 7 slots more.
       std::uint32_t* px;  // (straight into the recording when one is made)
       if (recorded) {
-        recorded->pixel.resize(static_cast<std::size_t>(runs.count) + 7);
+        recorded->pixel = sc.recording->arena.make<std::uint32_t>(static_cast<std::size_t>(runs.count) + 7);
         px = recorded->pixel.data();
       } else {
         sc.pixel.resize(static_cast<std::size_t>(runs.count) + 7);
@@ -491,7 +491,8 @@ void Context::shade_group_runs(const DrawSetup& ds, FragmentSpan& span, int band
     if (dt.known) ++sc.depth_reused;
     if (memo && !dt.known) {
       memo->epoch = 0;
-      memo->cmp.resize(static_cast<std::size_t>(runs.count));
+      if (memo->cmp.size() != static_cast<std::size_t>(runs.count))  // (allocated by the first replay that records them)
+        memo->cmp = g.from_recording->arena.make<std::uint8_t>(static_cast<std::size_t>(runs.count));
       dt.record = memo->cmp.data();
     }
     run_fragment_plan_pixels(*fragment_current_plan_, fragment_current_constants_, sc.codes.data(), depth, pixel,

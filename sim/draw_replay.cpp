@@ -12,6 +12,7 @@
 // the replay's groups, long runs, depth codes and pixel lists are the rasterizer's.
 #include <algorithm>
 #include <array>
+#include <memory>
 #include <utility>
 
 #include "sim/context.h"
@@ -85,15 +86,16 @@ RecordedGroup* Context::record_group(SpanScratch& sc) {
   RasterRecording& r = *sc.recording;
   r.steps.push_back({false, r.groups.size()});
   RecordedGroup& g = r.groups.emplace_back();
-  g.weight = sc.weight;
-  g.run_y = sc.run_y;
-  g.run_x0 = sc.run_x0;
-  g.run_length = sc.run_length;
+  RecordingArena& a = r.arena;
+  g.weight = a.copy(sc.weight.data(), sc.weight.size());
+  g.run_y = a.copy(sc.run_y.data(), sc.run_y.size());
+  g.run_x0 = a.copy(sc.run_x0.data(), sc.run_x0.size());
+  g.run_length = a.copy(sc.run_length.data(), sc.run_length.size());
   g.fragments = sc.group_fragments;
-  g.triangles.reserve(sc.triangles.size());
+  g.triangles = a.make<RecordedTriangle>(sc.triangles.size());
   for (std::size_t i = 0; i < sc.triangles.size(); ++i) {
     const GroupTriangle& t = sc.triangles[i];
-    g.triangles.push_back({sc.triangle_index[i], t.cov, t.run_begin, t.fragment_begin});
+    std::construct_at(&g.triangles[i], RecordedTriangle{sc.triangle_index[i], t.cov, t.run_begin, t.fragment_begin});
   }
   return &g;
 }
@@ -139,6 +141,7 @@ void Context::replay_sequence(const DrawSetup& ds, const std::vector<TriangleRef
     runs.depth = g.depth.empty() ? nullptr : g.depth.data();
     runs.pixel = g.pixel.empty() ? nullptr : g.pixel.data();
     runs.from = &g;
+    runs.from_recording = &rec;
     shade_group_runs(ds, span, band, runs, nullptr);
   }
   sc.joined += rec.joined;

@@ -18,6 +18,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <memory>
 #ifdef __AVX2__
 #include <immintrin.h>
 #endif
@@ -488,14 +489,17 @@ void Context::shade_runs_fast(const ShadingState& st, const ShadingPlan& plan, c
       s_of = sc.s.data();
       t_of = sc.t.data();
     } else {  // the first computed for a recording: straight into it
-      to->s.resize(N + 3);
-      to->t.resize(N + 3);
+      to->s = sc.recording->arena.make<float>(N + 3);
+      to->t = sc.recording->arena.make<float>(N + 3);
       compute_coordinates(u, to->s.data(), to->t.data());
       s_of = to->s.data();
       t_of = to->t.data();
-      to->tcw.resize(static_cast<std::size_t>(triangles));
+      to->tcw = sc.recording->arena.make<std::array<std::array<double, 3>, 3>>(static_cast<std::size_t>(triangles));
       for (int i = 0; i < triangles; ++i)
-        for (std::size_t k = 0; k < 3; ++k) to->tcw[static_cast<std::size_t>(i)][k] = tris[i].tv[k]->tcw[static_cast<std::size_t>(u)];
+        std::construct_at(&to->tcw[static_cast<std::size_t>(i)],
+                          std::array<std::array<double, 3>, 3>{tris[i].tv[0]->tcw[static_cast<std::size_t>(u)],
+                                                               tris[i].tv[1]->tcw[static_cast<std::size_t>(u)],
+                                                               tris[i].tv[2]->tcw[static_cast<std::size_t>(u)]});
     }
   };
   auto colors = [&](bool secondary, std::uint16_t* to) {

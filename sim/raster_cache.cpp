@@ -16,11 +16,7 @@ std::size_t bytes_of(const std::vector<T, A>& v) {
 }  // namespace
 
 std::size_t RasterRecording::bytes() const {
-  std::size_t b = sizeof(*this) + bytes_of(steps) + bytes_of(groups) + bytes_of(long_runs);
-  for (const RecordedGroup& g : groups)
-    b += bytes_of(g.weight) + bytes_of(g.run_y) + bytes_of(g.run_x0) + bytes_of(g.run_length) + bytes_of(g.triangles) +
-         bytes_of(g.depth) + bytes_of(g.pixel) + bytes_of(g.s) + bytes_of(g.t) + bytes_of(g.tcw);
-  return b;
+  return sizeof(*this) + bytes_of(steps) + bytes_of(groups) + bytes_of(long_runs) + arena.capacity();
 }
 
 std::uint64_t RasterCache::hash(const std::vector<std::int64_t>& key) {

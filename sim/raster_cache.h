@@ -23,15 +23,9 @@
 
 #include "pipeline/gl/enums.h"
 #include "pipeline/raster/triangle.h"
-#include "sim/uninitialized_allocator.h"
+#include "sim/recording_arena.h"
 
 namespace ffsim {
-
-// Arrays the span path fills whole right away (a recorded group's depth codes,
-// pixel list and texture coordinates, written in place instead of copied from
-// the scratch arrays): sized without a write.
-template <class T>
-using FilledVector = std::vector<T, UninitializedAllocator<T>>;
 
 // A triangle of a recorded group: its index in the sequence (its vertices are the
 // current draw's), its coverage, and where its runs start in the group.
@@ -43,33 +37,35 @@ struct RecordedTriangle {
 
 // A group of runs as shade_group received it (Context::SpanScratch), the depth
 // codes shading computed for it (empty without a depth buffer) and the pixel
-// indices the fragment operations took.
+// indices the fragment operations took. Its arrays live in the recording's
+// arena (RasterRecording::arena), written once when recorded.
 struct RecordedGroup {
-  std::vector<std::array<std::int64_t, 3>> weight;
-  std::vector<int> run_y, run_x0, run_length;
-  std::vector<RecordedTriangle> triangles;
+  ArenaArray<std::array<std::int64_t, 3>> weight;
+  ArenaArray<int> run_y, run_x0, run_length;
+  ArenaArray<RecordedTriangle> triangles;
   int fragments = 0;
-  FilledVector<std::uint32_t> depth;
-  FilledVector<std::uint32_t> pixel;  // y·width + x per fragment, 7 spare (empty: not written by list)
+  ArenaArray<std::uint32_t> depth;
+  ArenaArray<std::uint32_t> pixel;  // y·width + x per fragment, 7 spare (empty: not written by list)
   // The first sampled unit's s/q, t/q as the span path computed them (binary32,
   // one per fragment, 3 spare), and each triangle's s/w, t/w, q/w at its three
   // vertices for that unit; empty when the recording drew no texture. A replay
   // whose triangles have those same bits for a unit takes these values instead
   // of computing them (docs/performance.md 16.6): texture_coordinates is a
   // function of exactly those bits, the coverage and the runs.
-  FilledVector<float> s, t;
-  std::vector<std::array<std::array<double, 3>, 3>> tcw;
+  ArenaArray<float> s, t;
+  ArenaArray<std::array<std::array<double, 3>, 3>> tcw;
   // The depth test's comparisons on this group's listed fragments (ListedDepthTest,
   // docs/performance.md 17.1), made by a replay while the framebuffer's depth
   // epoch was `epoch`, for `func`; `would_store`: some fragment passing them has
   // a depth other than the stored one. A replay under the same epoch and
   // function takes them instead of reading the depth buffer. Kept by replays of
-  // a const recording (a recording is replayed by one thread at a time: its band's).
+  // a const recording (a recording is replayed by one thread at a time: its
+  // band's), in its arena.
   struct DepthComparisons {
     std::uint64_t epoch = 0;  // 0: none (epochs start at 1)
     GLenum func = 0;
     bool would_store = true;
-    std::vector<std::uint8_t> cmp;
+    ArenaArray<std::uint8_t> cmp;
   };
   mutable DepthComparisons depth_test;
 };
@@ -92,6 +88,9 @@ struct alignas(64) RasterRecording {  // (a band's own cache lines: the bands re
   std::vector<Step> steps;
   std::vector<RecordedGroup> groups;
   std::vector<RecordedLongRun> long_runs;
+  // The groups' arrays (the depth comparisons are added by replays, under the
+  // same one-thread-at-a-time rule as RecordedGroup::depth_test).
+  mutable RecordingArena arena;
   std::uint64_t joined = 0, met = 0;
   std::size_t bytes() const;
 };

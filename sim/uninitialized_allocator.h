@@ -36,4 +36,9 @@ struct UninitializedAllocator : std::allocator<T> {
   }
 };
 
+// Arrays filled whole right away (the span path's scratch, the window
+// vertices): sized without a write.
+template <class T>
+using FilledVector = std::vector<T, UninitializedAllocator<T>>;
+
 }  // namespace ffsim

@@ -392,7 +392,9 @@ TEST_CASE("raster cache: keys are compared whole, and the cache stays within its
   RasterCache cache;
   auto recording = [](std::size_t depth_codes) {
     std::vector<RasterRecording> r(1);
-    r[0].groups.emplace_back().depth.assign(depth_codes, 7u);
+    RecordedGroup& g = r[0].groups.emplace_back();
+    g.depth = r[0].arena.make<std::uint32_t>(depth_codes);
+    std::fill(g.depth.begin(), g.depth.end(), 7u);
     r[0].steps.push_back({false, 0});
     return r;
   };
