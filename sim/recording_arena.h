@@ -17,6 +17,7 @@
 #include <new>
 #include <stdexcept>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace ffsim {
@@ -44,8 +45,13 @@ class RecordingArena {
   static constexpr std::size_t kAlign = 32;  // (an AVX2 register)
 
   RecordingArena() = default;
-  RecordingArena(RecordingArena&&) noexcept = default;
-  RecordingArena& operator=(RecordingArena&&) noexcept = default;
+  // A move takes the blocks (the arrays stay where they are) and leaves the
+  // source empty, so that it cannot hand out the rest of a block it gave away.
+  RecordingArena(RecordingArena&& o) noexcept { take(o); }
+  RecordingArena& operator=(RecordingArena&& o) noexcept {
+    if (this != &o) take(o);
+    return *this;
+  }
   RecordingArena(const RecordingArena&) = delete;
   RecordingArena& operator=(const RecordingArena&) = delete;
 
@@ -73,6 +79,14 @@ class RecordingArena {
 
  private:
   void* bytes(std::size_t n);
+  void take(RecordingArena& o) noexcept {
+    blocks_ = std::move(o.blocks_);
+    o.blocks_.clear();
+    next_ = std::exchange(o.next_, nullptr);
+    left_ = std::exchange(o.left_, 0);
+    capacity_ = std::exchange(o.capacity_, 0);
+    next_block_ = std::exchange(o.next_block_, kFirstBlock);
+  }
 
   struct Free {  // (blocks are allocated kAlign-aligned)
     void operator()(std::byte* p) const { ::operator delete(p, std::align_val_t{kAlign}); }

@@ -50,6 +50,16 @@ TEST_CASE("recording arena: arrays are aligned, disjoint and keep their contents
     for (std::size_t k = 0; k < m.a.size(); ++k)
       REQUIRE(m.a[k] == m.seed + static_cast<std::uint32_t>(k));  // an overlap or a moved block would change some
   CHECK(moved.capacity() >= bytes);
+  // The source is left empty: what it makes next comes from a block of its own.
+  CHECK(arena.capacity() == 0);
+  const ArenaArray<std::uint32_t> fresh = arena.make<std::uint32_t>(1000);
+  for (std::size_t k = 0; k < fresh.size(); ++k) fresh[k] = 0xDEADBEEFu;
+  for (const Made& m : made)
+    for (std::size_t k = 0; k < m.a.size(); ++k) REQUIRE(m.a[k] == m.seed + static_cast<std::uint32_t>(k));
+  // Move assignment frees the target's blocks and takes the source's.
+  moved = std::move(arena);
+  CHECK(moved.capacity() == RecordingArena::kFirstBlock);
+  CHECK(fresh[999] == 0xDEADBEEFu);
 }
 
 TEST_CASE("recording arena: block sizes, copies and the empty array") {
