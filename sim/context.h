@@ -11,6 +11,7 @@
 // debug context.
 #pragma once
 #include <array>
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -501,6 +502,11 @@ class Context {
   std::uint64_t split_uploads() const { return split_uploads_; }
   // glClears whose rows were written in bands on the pool (docs/performance.md 27.1).
   std::uint64_t split_clears() const { return split_clears_; }
+  // Wall time, in seconds, the calling thread has spent in the pool's runs (the
+  // four kinds of split above): the rest of a frame's time is its serial part,
+  // which bounds the speed-up of more threads (Amdahl; ffsim bench --perf's
+  // threads table, docs/performance.md 31). 0 with one thread.
+  double pool_seconds() const { return std::chrono::duration<double>(pool_time_).count(); }
   // glEnds whose vertices were put in window form once and shared by their
   // polygons (span path, smooth shading, every vertex inside the view volume).
   std::uint64_t shared_vertex_draws() const { return shared_vertex_draws_; }
@@ -698,6 +704,8 @@ class Context {
   void flush_batch(const DrawSetup& ds);
   // The pool, borrowed (again) when it is missing or sized for other than threads().
   WorkerPool& pool();
+  // pool().run(n, fn), its wall time added to pool_time_.
+  void run_split(int n, const std::function<void(int)>& fn);
   // The pool, and scratch, spans and counters for at least `bands` bands.
   void ready_bands(int bands);
   // The bands' fragment and run counts added to the Context's, and zeroed.
@@ -795,6 +803,7 @@ class Context {
   std::uint64_t split_pixel_rects_ = 0;
   std::uint64_t split_uploads_ = 0;
   std::uint64_t split_clears_ = 0;
+  std::chrono::steady_clock::duration pool_time_{0};  // pool_seconds()
   // Scratch of the span path, reused from run to run (sim/draw_span.cpp).
   // (alignas(64): the bands' scratch never share a cache line, so two threads'
   // writes to their own members do not take the line from each other; the same

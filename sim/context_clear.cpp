@@ -88,7 +88,7 @@ void Context::clear(GLbitfield mask) {
   if (threads_ > 1 && !probed && height >= 2 && std::int64_t{plan.r.width} * height >= split_fragments_) {
     const int bands = std::min(4 * threads_, height);
     ++split_clears_;
-    pool().run(bands, [&](int k) {
+    run_split(bands, [&](int k) {
       fb_.clear_rows(plan, plan.r.y + height * k / bands, plan.r.y + height * (k + 1) / bands);
     });
   } else {

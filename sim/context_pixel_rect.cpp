@@ -242,7 +242,7 @@ void Context::code_rows_in_bands(const std::vector<std::array<int, 2>>& rows, in
   } sum{*this};
   ++split_pixel_rects_;
   const bool has_depth = fb_.has_depth();
-  pool_->run(bands, [&](int k) {
+  run_split(bands, [&](int k) {
     FragmentSpan& span = band_spans_[static_cast<std::size_t>(k)].span;
     span.count = row_fragments;
     span.x0 = x0;

@@ -67,7 +67,7 @@ bool Context::upload_in_bands(const void* data, int width, int height, GLenum fo
   // (make_texture_image is texture_level + store_texels at (0, 0)); the bands'
   // rows are disjoint. Band k's first row r0 is read as if UNPACK_SKIP_ROWS were
   // r0 larger (ClientLayout::offset: the skip and the row add alike).
-  pool().run(bands, [&](int k) {
+  run_split(bands, [&](int k) {
     const int r0 = static_cast<int>(static_cast<std::int64_t>(height) * k / bands);
     const int r1 = static_cast<int>(static_cast<std::int64_t>(height) * (k + 1) / bands);
     pixel::PixelStoreModes u = pixel_store_.unpack;

@@ -777,6 +777,15 @@ WorkerPool& Context::pool() {
   return *pool_;
 }
 
+void Context::run_split(int n, const std::function<void(int)>& fn) {
+  struct Add {  // (also when a task throws: run rethrows after every task ended)
+    Context& c;
+    const std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
+    ~Add() { c.pool_time_ += std::chrono::steady_clock::now() - t0; }
+  } add{*this};
+  pool().run(n, fn);
+}
+
 void Context::ready_bands(int bands) {
   pool();
   if (band_scratch_.size() < static_cast<std::size_t>(bands)) {
@@ -835,7 +844,7 @@ void Context::flush_batch(const DrawSetup& ds) {
     replay = raster_cache_.find(key);
     if (!replay) recorded.resize(static_cast<std::size_t>(bands));
   }
-  pool_->run(bands, [&](int b) {
+  run_split(bands, [&](int b) {
     const int y0 = r0 + static_cast<int>(std::int64_t{rows} * b / bands);
     const int y1 = r0 + static_cast<int>(std::int64_t{rows} * (b + 1) / bands);
     FragmentSpan& bs = band_spans_[static_cast<std::size_t>(b)].span;

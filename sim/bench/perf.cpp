@@ -242,6 +242,7 @@ struct TraceRow {
   int passes = 0;
   double fragments = 0;  // per frame
   Timing t;              // seconds per frame
+  Timing serial;         // of each frame, seconds the calling thread spent outside the pool's runs
 };
 
 Sets scene_sets(const TraceCase& c) {
@@ -256,16 +257,21 @@ TraceRow run_trace_case(const Options& o, const TraceCase& c, int repeat) {
   row.c = c;
   row.passes = prog.pass_count();
   std::ostringstream sink;
-  std::vector<double> times;
+  std::vector<double> times, serial;
   for (int r = 0; r <= repeat; ++r) {  // r = 0: warm-up
     Context ctx(prog.profile, prog.width, prog.height);
     const auto t0 = Clock::now();
     check(trace::run_program_on(ctx, prog, quiet_run(c.threads), sink), c.trace);
     const double t = seconds_since(t0);
-    if (r == 0) row.fragments = static_cast<double>(ctx.fragments_written());
-    else times.push_back(t);
+    if (r == 0) {
+      row.fragments = static_cast<double>(ctx.fragments_written());
+    } else {
+      times.push_back(t);
+      serial.push_back(std::max(0.0, t - ctx.pool_seconds()));
+    }
   }
   row.t = spread(times);
+  row.serial = spread(serial);
   return row;
 }
 
@@ -377,15 +383,19 @@ int parse_args(const std::vector<std::string>& args, Options& o, std::ostream& e
 int time_one_trace(const Options& o, std::ostream& out, std::ostream& err) {
   try {
     const trace::Program prog = load(o.trace_file, o.sets);
-    std::vector<double> times;
+    std::vector<double> times, serial;
     std::uint64_t fragments = 0;
     std::ostringstream sink;
+    const int threads = o.thread_counts.empty() ? 1 : o.thread_counts.front();
     for (int r = 0; r <= o.repeat; ++r) {
       Context ctx(prog.profile, prog.width, prog.height);
       const auto t0 = Clock::now();
-      check(trace::run_program_on(ctx, prog, quiet_run(o.thread_counts.empty() ? 1 : o.thread_counts.front()), sink),
-            o.trace_file);
-      if (r > 0) times.push_back(seconds_since(t0));
+      check(trace::run_program_on(ctx, prog, quiet_run(threads), sink), o.trace_file);
+      const double t = seconds_since(t0);
+      if (r > 0) {
+        times.push_back(t);
+        serial.push_back(std::max(0.0, t - ctx.pool_seconds()));
+      }
       fragments = ctx.fragments_written();
     }
     const Timing t = spread(times);
@@ -393,6 +403,10 @@ int time_one_trace(const Options& o, std::ostream& out, std::ostream& err) {
         << fragments << " fragments; median " << fixed(t.median * 1e3, 3) << " ms (" << fixed(t.min * 1e3, 3) << " .. "
         << fixed(t.max * 1e3, 3) << "), " << fixed(1 / t.median, 1) << " frames/s, "
         << fixed(static_cast<double>(fragments) / t.median / 1e6, 1) << " Mfragments/s\n";
+    if (threads > 1)
+      out << "serial part (this thread outside the pool's runs): median " << fixed(spread(serial).median * 1e3, 3)
+          << " ms of each frame; with one thread's frame time T1 the speed-up is at most T1 / (serial + (T1 - serial) / "
+          << threads << ") (docs/performance.md 31)\n";
   } catch (const trace::TraceError& e) {
     err << "ffsim bench --perf: " << e.what() << "\n";
     return 1;
@@ -419,13 +433,23 @@ std::string perf_usage() {
          "  threads  frames/s of the terrain at 640x480 and the polygon at 1024^2 for 1 ..\n"
          "           hardware threads, each speed-up against one thread, and the machine's\n"
          "           parallel ceiling (a cache-resident loop per thread, all at once) before\n"
-         "           and after the table\n"
+         "           and after the table; for each threaded row its serial part (the calling\n"
+         "           thread outside the pool's runs) and Amdahl's bound from it\n"
          "Median of --repeat N runs (default 7; 3 with --quick) after one warm-up, with min and max.\n"
          "--quick: 256^2 stages, the smaller sizes, about a minute. Writes perf_stages.csv,\n"
-         "perf_traces.csv, perf_scaling.csv, perf_threads.csv and perf.md into --out\n"
+         "perf_traces.csv, perf_scaling.csv, perf_threads.csv, perf_threads_serial.csv and\n"
+         "perf.md into --out\n"
          "(default docs/results). Never fails on a number.\n"
          "--trace FILE: replay one trace --repeat times (loaded once, outputs off) and print its\n"
-         "median frame time, frames/s and Mfragments/s.\n";
+         "median frame time, frames/s and Mfragments/s (with --threads N > 1 also the median serial\n"
+         "part: the time this thread spent outside the pool's runs).\n";
+}
+
+double amdahl_bound(double one_thread_s, double serial_s, int threads) {
+  if (!(one_thread_s > 0) || threads < 1 || !(serial_s >= 0)) return 0;
+  const double split = std::max(0.0, one_thread_s - serial_s);
+  const double t = serial_s + split / threads;
+  return t > 0 ? one_thread_s / t : 0;
 }
 
 int run_perf(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
@@ -560,6 +584,33 @@ int run_perf(const std::vector<std::string>& args, std::ostream& out, std::ostre
         out << "speed-up against one thread: " << speedups << "\n";
         md << "\nSpeed-up against one thread (medians): " << speedups << ".\n";
       }
+      // Where each threaded frame goes: the calling thread's serial part (outside
+      // the pool's runs) and the rest, and Amdahl's bound from that serial part.
+      Csv split_csv(fs::path(o.out_dir) / "perf_threads_serial.csv",
+                    "trace,scene,width,height,threads,median_s,serial_median_s,one_thread_median_s,speedup,amdahl_bound");
+      std::ostringstream split_md, split_out;
+      for (const TraceRow& r : thread_rows)
+        for (const TraceRow& one : thread_rows)
+          if (r.c.threads > 1 && one.c.threads == 1 && one.c.trace == r.c.trace && one.c.scene == r.c.scene) {
+            const double bound = amdahl_bound(one.t.median, r.serial.median, r.c.threads);
+            const double speedup = one.t.median / r.t.median;
+            split_out << "  " << cell(r.c.trace + " " + r.c.scene, 32) << r.c.threads << " threads: serial "
+                << fixed(r.serial.median * 1e3, 3) << " ms of " << fixed(r.t.median * 1e3, 3) << " ms, speed-up "
+                << fixed(speedup, 2) << "x, Amdahl bound " << fixed(bound, 2) << "x\n";
+            split_md << "| " << r.c.trace << " | " << r.c.scene << " | " << r.c.threads << " | " << fixed(r.t.median * 1e3, 3)
+                     << " | " << fixed(r.serial.median * 1e3, 3) << " | " << fixed(100 * r.serial.median / r.t.median, 0)
+                     << " % | " << fixed(speedup, 2) << "x | " << fixed(bound, 2) << "x |\n";
+            split_csv.f << r.c.trace << "," << r.c.scene << "," << r.c.width << "," << r.c.height << "," << r.c.threads << ","
+                        << r.t.median << "," << r.serial.median << "," << one.t.median << "," << speedup << "," << bound << "\n";
+          }
+      if (!split_out.str().empty())
+        out << "serial part (the calling thread outside the pool's runs) and Amdahl's bound from it:\n" << split_out.str();
+      if (!split_md.str().empty())
+        md << "\nWhere each threaded frame goes (medians; serial: the calling thread outside the pool's runs, "
+              "`Context::pool_seconds`; Amdahl bound: one thread's frame / (serial + the rest / threads); "
+              "docs/performance.md 31):\n\n| trace | scene | threads | frame ms | serial ms | serial share | speed-up | "
+              "Amdahl bound |\n| --- | --- | --- | --- | --- | --- | --- | --- |\n"
+           << split_md.str();
       if (!ceiling_before.empty()) {
         const std::string ceiling_after = ceilings();
         out << "parallel ceiling of this machine (a cache-resident loop per thread, all at once, against one), "

@@ -5,12 +5,14 @@
 // Timings are never checked (benchmarks, not timed tests).
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <unistd.h>
 
 #include "cli_test_util.h"
+#include "sim/bench/perf.h"
 #include "sim/cli/cli.h"
 
 using namespace ffsim;
@@ -125,5 +127,46 @@ TEST_CASE("bench --perf: the threads table prints each speed-up and the machine'
   text << md.rdbuf();
   CHECK(text.str().find("Speed-up against one thread (medians): ") != std::string::npos);
   CHECK(text.str().find("Parallel ceiling of this machine, measured just before / after this table") != std::string::npos);
+  // Each threaded row's serial part and Amdahl's bound: one line each, in the
+  // text, perf.md's table and perf_threads_serial.csv (header and 6 rows).
+  CHECK(count(r.out, " 2 threads: serial ") == 6);
+  CHECK(count(r.out, ", Amdahl bound ") == 6);
+  CHECK(text.str().find("| trace | scene | threads | frame ms | serial ms | serial share | speed-up | Amdahl bound |") !=
+        std::string::npos);
+  const auto split_rows = read_csv(dir / "perf_threads_serial.csv");
+  REQUIRE(split_rows.size() == 7);
+  CHECK(split_rows[0] == std::vector<std::string>{"trace", "scene", "width", "height", "threads", "median_s", "serial_median_s",
+                                                  "one_thread_median_s", "speedup", "amdahl_bound"});
+  for (std::size_t i = 1; i < split_rows.size(); ++i) {
+    REQUIRE(split_rows[i].size() == 10);
+    CHECK(split_rows[i][4] == "2");
+    // The serial part is a part of the frame; the bound is above 0 and at most
+    // the thread count.
+    const double median = std::stod(split_rows[i][5]), serial = std::stod(split_rows[i][6]);
+    const double bound = std::stod(split_rows[i][9]);
+    CHECK(serial >= 0);
+    CHECK(serial <= median);
+    CHECK(bound > 0);
+    CHECK(bound <= 2.0 + 1e-9);
+  }
   fs::remove_all(dir);
+}
+
+TEST_CASE("bench --perf: Amdahl's bound, hand-derived values") {
+  using ffsim::bench::amdahl_bound;
+  // 4 ms on one thread, 1 ms serial, 2 threads: 4 / (1 + 3/2) = 1.6.
+  CHECK(amdahl_bound(4e-3, 1e-3, 2) == doctest::Approx(1.6));
+  // 3 threads: 4 / (1 + 1) = 2; no serial part: the thread count; all serial: 1.
+  CHECK(amdahl_bound(4e-3, 1e-3, 3) == doctest::Approx(2.0));
+  CHECK(amdahl_bound(4e-3, 0, 2) == doctest::Approx(2.0));
+  CHECK(amdahl_bound(4e-3, 4e-3, 2) == doctest::Approx(1.0));
+  // A serial part longer than the one-thread frame (the split's own set-up): T1 / S.
+  CHECK(amdahl_bound(2e-3, 4e-3, 2) == doctest::Approx(0.5));
+  // One thread: 1 whatever the serial part.
+  CHECK(amdahl_bound(4e-3, 1e-3, 1) == doctest::Approx(1.0));
+  // Nonsense in, 0 out (never NaN or Inf).
+  CHECK(amdahl_bound(0, 1e-3, 2) == 0);
+  CHECK(amdahl_bound(4e-3, -1, 2) == 0);
+  CHECK(amdahl_bound(4e-3, 1e-3, 0) == 0);
+  CHECK(amdahl_bound(std::nan(""), 1e-3, 2) == 0);
 }

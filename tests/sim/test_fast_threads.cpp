@@ -347,6 +347,34 @@ TEST_CASE("fast threads: a batch is split by its triangles' areas, not their box
   }
 }
 
+TEST_CASE("fast threads: pool_seconds is the calling thread's time in the pool's runs, 0 without a split") {
+  // The bench's serial part is a frame's time minus pool_seconds (docs/performance.md
+  // 31): it must grow with each split (the clear's rows and the batch), stay 0 when
+  // nothing is split, and never exceed the wall time around the draws.
+  std::vector<std::array<double, 2>> halves;
+  for (int k = 0; k < 20; ++k) halves.insert(halves.end(), {{0, 0}, {160, 0}, {0, 120}});
+  Context one(profile_named("geforce256"), 160, 120);
+  draw_triangles(one, halves);
+  CHECK(one.pool_seconds() == 0);
+  Context two(profile_named("geforce256"), 160, 120);
+  two.set_threads(2);
+  two.set_split_fragments(std::int64_t{1} << 40);  // nothing worth splitting
+  draw_triangles(two, halves);
+  CHECK(two.split_batches() + two.split_clears() == 0);
+  CHECK(two.pool_seconds() == 0);
+  two.set_split_fragments(Context::kSplitFragments);
+  const auto t0 = std::chrono::steady_clock::now();
+  draw_triangles(two, halves);
+  const double after_one = two.pool_seconds();
+  draw_triangles(two, halves);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  REQUIRE(two.split_batches() == 2);
+  REQUIRE(two.split_clears() == 2);
+  CHECK(after_one > 0);
+  CHECK(two.pool_seconds() > after_one);
+  CHECK(two.pool_seconds() <= wall);
+}
+
 TEST_CASE("fast threads: a borrowed pool goes back to the idle pools and is borrowed again") {
   // 7 threads: a size no other test borrows. Returned pools join the idle pools
   // (the oldest is evicted beyond four); a borrow takes the most recent of its size.
