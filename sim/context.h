@@ -513,6 +513,9 @@ class Context {
   // glEnds whose vertices were all one replayed run's and whose window
   // attributes were read from the run's record (VertexRunFill; never copied).
   std::uint64_t run_record_reads() const { return run_record_reads_; }
+  // glEnds skipped whole because their geometry memo entry has every vertex at
+  // one window position (GeometryEntry::one_point: no triangle has area).
+  std::uint64_t one_point_draws() const { return one_point_draws_; }
   // Span-path groups (sim/draw.cpp): triangles whose runs joined a group already
   // holding an earlier triangle's, and groups closed because a run met one of
   // their pixels.
@@ -798,11 +801,13 @@ class Context {
   void copy_pending_run();
   std::vector<glm::dvec4> object_scratch_;  // a glEnd's object positions, for the memo
   std::vector<TriangleRef> sequence_scratch_;  // a glEnd's triangles (one thread)
+  std::vector<TriangleRef> covering_scratch_;  // draw_sequence: those that may make fragments
   std::uint64_t fast_runs_ = 0, split_batches_ = 0, split_triangles_ = 0, shared_vertex_draws_ = 0, batch_memo_uses_ = 0,
                 run_record_reads_ = 0;
   std::uint64_t split_pixel_rects_ = 0;
   std::uint64_t split_uploads_ = 0;
   std::uint64_t split_clears_ = 0;
+  std::uint64_t one_point_draws_ = 0;
   std::chrono::steady_clock::duration pool_time_{0};  // pool_seconds()
   // Scratch of the span path, reused from run to run (sim/draw_span.cpp).
   // (alignas(64): the bands' scratch never share a cache line, so two threads'

@@ -126,6 +126,14 @@ void Context::end() {
     for (ClipVertex& c : v) c.position = projection_.top() * (modelview_.top() * c.position);  // §2.10
     for (std::size_t i = 0; i < n && shared; ++i) shared = inside_view_volume(v[i].position);
   }
+  // The memo's entry says every vertex lies at one window position: no triangle
+  // of this glEnd makes a fragment (triangle_never_covers), so nothing is put in
+  // window form, batched or drawn; a pending batch is left as it is (its state is
+  // this glEnd's: only vertex data came since).
+  if (shared && geo && geo->one_point) {
+    ++one_point_draws_;
+    return;
+  }
   std::size_t shared_base = 0;
   std::uint64_t geometry = 0;  // the memo's serial of this glEnd's window positions
   FragmentSpan shared_span;
@@ -157,12 +165,14 @@ void Context::end() {
       e.iw.resize(n);
       e.p.resize(n);
       e.depth.resize(ds.has_depth ? n : 0);
+      e.one_point = true;
       for (std::size_t i = 0; i < n; ++i) {
         e.iw[i] = 1.0 / v[i].position.w;
         window_position(v[i].position, e.iw[i], ds, w[i]);
         window_attributes(v[i], e.iw[i], ds, w[i]);
         e.p[i] = w[i].p;
         if (ds.has_depth) e.depth[i] = w[i].depth;
+        e.one_point = e.one_point && e.p[i].x == e.p[0].x && e.p[i].y == e.p[0].y;
       }
       geometry = e.serial;
       entry = &e;

@@ -752,6 +752,9 @@ void Context::batch_polygon(std::vector<ClipVertex>& poly, std::size_t provoking
 void Context::batch_triangle(std::size_t a, std::size_t b, std::size_t c, const DrawSetup& ds) {
   const int S = profile_.subpixel_bits;
   const SnappedVertex &pa = batch_vertices_[a].p, &pb = batch_vertices_[b].p, &pc = batch_vertices_[c].p;
+  // No fragment, whatever the band (e.g. a mesh scaled to a point): left out of
+  // the batch, its key, its recording and every band's walk.
+  if (triangle_never_covers(pa, pb, pc)) return;
   // Rows and columns the triangle's bounding box may cover (one more each way
   // than the snapped extremes), clipped to the window. A triangle that misses
   // the window produces no fragment and is left out.

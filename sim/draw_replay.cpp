@@ -12,6 +12,7 @@
 // the replay's groups, long runs, depth codes and pixel lists are the rasterizer's.
 #include <algorithm>
 #include <array>
+#include <iterator>
 #include <memory>
 #include <utility>
 
@@ -63,8 +64,19 @@ std::vector<std::int64_t> Context::raster_key(const DrawSetup& ds, const Triangl
   return key;
 }
 
-void Context::draw_sequence(const DrawSetup& ds, const std::vector<TriangleRef>& tris, FragmentSpan& span,
+void Context::draw_sequence(const DrawSetup& ds, const std::vector<TriangleRef>& all, FragmentSpan& span,
                             std::uint64_t geometry) {
+  // Triangles that make no fragment (triangle_never_covers, e.g. a mesh scaled to
+  // a point) are left out before the key, the recording and the walk.
+  auto never = [](const TriangleRef& t) { return triangle_never_covers(t[0]->p, t[1]->p, t[2]->p); };
+  const std::vector<TriangleRef>* kept = &all;
+  if (std::any_of(all.begin(), all.end(), never)) {
+    covering_scratch_.clear();
+    std::copy_if(all.begin(), all.end(), std::back_inserter(covering_scratch_), [&](const TriangleRef& t) { return !never(t); });
+    kept = &covering_scratch_;
+  }
+  const std::vector<TriangleRef>& tris = *kept;
+  if (tris.empty()) return;
   if (!raster_cache_applies(ds)) {
     for (const TriangleRef& t : tris) raster_triangle(ds, t, ds.cy0, ds.cy1, span, -1);
     shade_group(ds, span, -1);

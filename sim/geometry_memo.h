@@ -64,6 +64,9 @@ struct GeometryEntry {
   std::vector<double> iw;          // 1 / w_c
   std::vector<SnappedVertex> p;
   std::vector<std::uint32_t> depth;  // empty without a depth buffer
+  // Every window position equal (a mesh scaled to a point): no triangle of the
+  // glEnd has area, so none makes a fragment (triangle_never_covers).
+  bool one_point = false;
   mutable BatchMemo batch;           // (derived from the above: made when first needed)
 };
 

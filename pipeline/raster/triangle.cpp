@@ -51,12 +51,10 @@ TriangleCoverage rasterize_triangle(const std::array<SnappedVertex, 3>& vin, int
                                     const std::function<void(const TriangleCoverage&, const CoverageRun&)>& emit,
                                     RunWeights weights, CoverageRun* scratch) {
   TriangleCoverage cov;
-  for (const SnappedVertex& p : vin)
-    if (p.x < -kMaxSnapped || p.x > kMaxSnapped || p.y < -kMaxSnapped || p.y > kMaxSnapped) return cov;
+  if (triangle_never_covers(vin[0], vin[1], vin[2])) return cov;
   std::array<SnappedVertex, 3> v = vin;
   std::array<int, 3> idx{0, 1, 2};  // which input vertex each v[k] is
-  std::int64_t area = (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[2].x - v[0].x) * (v[1].y - v[0].y);
-  if (area == 0) return cov;
+  std::int64_t area = snapped_twice_area(v[0], v[1], v[2]);
   if (area < 0) {  // make it counter-clockwise; weights are mapped back through idx
     std::swap(v[1], v[2]);
     std::swap(idx[1], idx[2]);

@@ -53,6 +53,24 @@ struct TriangleCoverage {
   std::array<std::int64_t, 3> dwdx{}, dwdy{};
 };
 
+// A snapped vertex the rasterizer accepts (beyond, a triangle is rejected whole).
+inline bool snapped_in_range(const SnappedVertex& p) {
+  return p.x >= -kMaxSnapped && p.x <= kMaxSnapped && p.y >= -kMaxSnapped && p.y <= kMaxSnapped;
+}
+// Twice the signed area on the grid (counter-clockwise positive); exact in 64
+// bits for vertices in range (differences below 2^29).
+inline std::int64_t snapped_twice_area(const SnappedVertex& a, const SnappedVertex& b, const SnappedVertex& c) {
+  return (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+}
+// rasterize_triangle produces no fragment for this triangle in any window: a
+// vertex out of range, or zero area on the grid (GL121 §3.5.1 produces the
+// fragments whose centres lie inside the polygon; a degenerate one has no
+// inside, and rasterize_triangle returns before its edges are set up). The tests
+// it makes first, so a caller may leave such a triangle out unseen.
+inline bool triangle_never_covers(const SnappedVertex& a, const SnappedVertex& b, const SnappedVertex& c) {
+  return !snapped_in_range(a) || !snapped_in_range(b) || !snapped_in_range(c) || snapped_twice_area(a, b, c) == 0;
+}
+
 // Rasterize one triangle; `clip_*` bound the fragments produced (relative to the
 // origin, half-open: x in [clip_x0, clip_x1), y in [clip_y0, clip_y1)). Calls
 // `emit` with the setup for every non-empty run, bottom row first. Returns the

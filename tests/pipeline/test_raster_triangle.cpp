@@ -143,6 +143,46 @@ TEST_CASE("raster: degenerate and tiny triangles produce no fragments") {
   CHECK(c.size() == 1);
 }
 
+TEST_CASE("raster: triangle_never_covers holds exactly for the triangles that set up nothing") {
+  // Callers leave out a triangle that triangle_never_covers names (sim/draw.cpp,
+  // sim/draw_replay.cpp): it must make no fragment, and every other triangle must
+  // be set up (area != 0). Random triangles on a small grid, a third of them made
+  // degenerate on purpose (a repeated vertex, or c = a + k (b - a)), some with a
+  // vertex beyond the snapped range.
+  std::mt19937 rng(20261206);
+  std::uniform_int_distribution<std::int64_t> coord(-40, 40), kind(0, 9), mult(-3, 3);
+  int never = 0, set_up = 0;
+  for (int i = 0; i < 20000; ++i) {
+    std::array<SnappedVertex, 3> t{};
+    for (SnappedVertex& v : t) v = {coord(rng), coord(rng)};
+    const auto k = kind(rng);
+    if (k == 0) t[2] = t[0];
+    if (k == 1 || k == 2) {
+      const std::int64_t m = mult(rng);
+      t[2] = {t[0].x + m * (t[1].x - t[0].x), t[0].y + m * (t[1].y - t[0].y)};
+    }
+    if (k == 3) t[static_cast<std::size_t>(i % 3)].x = (i % 2 ? 1 : -1) * (kMaxSnapped + 1 + coord(rng) * coord(rng));
+    int runs = 0;
+    const TriangleCoverage cov =
+        rasterize_triangle(t, S, -100, -100, 100, 100, [&](const TriangleCoverage&, const CoverageRun&) { ++runs; });
+    if (triangle_never_covers(t[0], t[1], t[2])) {
+      ++never;
+      REQUIRE(runs == 0);
+      REQUIRE(cov.area == 0);
+    } else {
+      ++set_up;
+      REQUIRE(cov.area != 0);
+      REQUIRE(cov.area == std::abs(snapped_twice_area(t[0], t[1], t[2])));
+    }
+  }
+  CHECK(never > 4000);
+  CHECK(set_up > 10000);
+  // The range is inclusive: a vertex at exactly +-kMaxSnapped is accepted.
+  CHECK_FALSE(triangle_never_covers({kMaxSnapped, 0}, {0, kMaxSnapped}, {-kMaxSnapped, -kMaxSnapped}));
+  CHECK(triangle_never_covers({kMaxSnapped + 1, 0}, {0, 16}, {16, 16}));
+  CHECK(triangle_never_covers({0, -kMaxSnapped - 1}, {0, 16}, {16, 16}));
+}
+
 TEST_CASE("raster: fragments are clipped to the given window") {
   const auto c = [&] {
     std::map<std::pair<int, int>, int> acc;

@@ -312,3 +312,69 @@ TEST_CASE("geometry memo: keys are compared whole, field by field and bit for bi
   CHECK(memo.find(other[0], pos.size(), at(pos)) == nullptr);
   CHECK(memo.insert(base, pos.size(), at(pos)).serial > last);  // serials are never reused
 }
+
+TEST_CASE("geometry memo: a glEnd at one window point is skipped whole, zero-area triangles are left out; == memo off == "
+          "per-fragment path at 1 and 2 threads") {
+  // The paper traces' polygon scene draws the terrain scaled by 0: every vertex
+  // at one window point, no triangle with area. On a memo hit such a glEnd is
+  // skipped whole (GeometryEntry::one_point); elsewhere triangles of zero snapped
+  // area are left out of the batch and the sequence (triangle_never_covers). The
+  // buffers must stay those of the memo off and of the per-fragment path.
+  const Profile& p = profile_named("geforce256");
+  Context on(p, kW, kH), off(p, kW, kH), ref(p, kW, kH), two(p, kW, kH);
+  off.set_geometry_memo(false);
+  ref.set_fast_paths(false);
+  two.set_threads(2);
+  two.set_split_fragments(64);  // every glEnd's batch in bands
+  std::vector<Context*> all{&on, &off, &ref, &two};
+  for (Context* c : all) {
+    perspective(*c, 10);
+    textured_additive(*c);
+  }
+  // The strip scaled to the point (px, py, 0) of object space.
+  auto to_point = [](Context& c, double px, double py) {
+    c.pushMatrix();
+    c.translate(px, py, 0);
+    c.scale(0, 0, 0);
+    draw_strip(c, {});
+    c.popMatrix();
+  };
+  // A fan whose middle triangles are collinear with its centre (zero area), and
+  // whose others are not.
+  auto fan = [](Context& c) {
+    c.begin(gl::TRIANGLE_FAN);
+    const double pts[][2] = {{48, 32}, {80, 32}, {88, 32}, {94, 32}, {80, 60}, {40, 60}, {20, 10}, {20, 10}, {60, 4}};
+    for (const auto& q : pts) {
+      c.texCoord2(q[0] / kW, q[1] / kH);
+      c.vertex3(q[0], q[1], 0);
+    }
+    c.end();
+  };
+  auto same = [&](const char* what) {
+    INFO(what);
+    CHECK(buffer_hashes(on) == buffer_hashes(off));
+    CHECK(buffer_hashes(on) == buffer_hashes(ref));
+    CHECK(buffer_hashes(on) == buffer_hashes(two));
+  };
+  for (Context* c : all) draw_strip(*c, {});
+  same("a strip");
+  for (Context* c : all) to_point(*c, 30.5, 20.5);  // a miss: window form computed, its triangles left out
+  same("the strip at one point, first");
+  CHECK(on.one_point_draws() == 0);
+  for (int k = 0; k < 3; ++k)
+    for (Context* c : all) to_point(*c, 30.5, 20.5);  // hits: skipped whole
+  same("the strip at one point, again");
+  CHECK(on.one_point_draws() == 3);
+  CHECK(two.one_point_draws() == 3);
+  CHECK(off.one_point_draws() == 0);
+  CHECK(ref.one_point_draws() == 0);
+  for (Context* c : all) to_point(*c, 31.25, 20.75);  // another point: another key, a miss
+  CHECK(on.one_point_draws() == 3);
+  for (Context* c : all) fan(*c);
+  same("a fan with zero-area triangles");
+  for (Context* c : all) fan(*c);  // a memo hit with triangles of zero area (not one point)
+  same("the fan again");
+  CHECK(on.one_point_draws() == 3);
+  for (Context* c : all) draw_strip(*c, {});
+  same("the strip after them");
+}
