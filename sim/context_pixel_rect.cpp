@@ -473,13 +473,41 @@ void Context::copy_pixels(int x, int y, int width, int height, GLenum type) {
     std::vector<std::uint16_t> code_of(static_cast<std::size_t>(fb_.color_max()) + 1);
     for (std::size_t k = 0; k < code_of.size(); ++k) code_of[k] = pixel::final_code(static_cast<T>(k) / maxc, bits);
     const std::uint16_t outside = pixel::final_code(T(0), bits);  // pixels outside the window read as 0
-    std::vector<std::uint16_t> codes(4 * static_cast<std::size_t>(width) * static_cast<std::size_t>(height), outside);
     // (In 64 bits: x and y may be any int.)
     const auto i0 = static_cast<int>(std::clamp<std::int64_t>(-std::int64_t{x}, 0, width));
     const auto i1 = static_cast<int>(std::clamp<std::int64_t>(std::int64_t{fb_.width()} - x, i0, width));
     // Every code its own final code (8 bits: k/255 converts back to k): rows copied.
     bool identity = true;
     for (std::size_t k = 0; k < code_of.size(); ++k) identity = identity && code_of[k] == k;
+    // No snapshot is needed when no fragment can write a source pixel before it is
+    // read: the colour mask keeps every channel (nothing writes colour), or each
+    // image pixel lands on the pixel it was read from (zoom 1, the raster position
+    // on the source corner: image row m is read just before its fragments are
+    // written, into that same row, and no other row writes it). Each row is then
+    // read from the framebuffer itself (the paper's step "CopyPixels the window
+    // onto itself"; docs/performance.md 31.3).
+    int gx0, gx1, gy0, gy1;
+    group_extent(0, 0, gx0, gx1, gy0, gy1);
+    const bool colour_kept = masks_.color == std::array<bool, 4>{false, false, false, false};
+    const bool in_place = pixel_zoom_[0] == 1 && pixel_zoom_[1] == 1 && gx0 == x && gy0 == y;
+    if (identity && (colour_kept || in_place)) {
+      const std::uint16_t* const fb_codes = fb_.codes().data();  // (taken here: the bands only read through it)
+      const int fb_w = fb_.width(), fb_h = fb_.height();
+      emit_color_code_rows(width, height, [=](int m, std::uint16_t* to) {
+        const std::int64_t fy = std::int64_t{y} + m;
+        if (fy < 0 || fy >= fb_h) {
+          std::fill_n(to, 4 * static_cast<std::size_t>(width), outside);
+          return;
+        }
+        std::fill_n(to, 4 * static_cast<std::size_t>(i0), outside);
+        if (i1 > i0)
+          std::copy_n(fb_codes + 4 * (static_cast<std::size_t>(fy) * static_cast<std::size_t>(fb_w) + static_cast<std::size_t>(x + i0)),
+                      4 * static_cast<std::size_t>(i1 - i0), to + 4 * static_cast<std::size_t>(i0));
+        std::fill_n(to + 4 * static_cast<std::size_t>(i1), 4 * static_cast<std::size_t>(width - i1), outside);
+      });
+      return;
+    }
+    std::vector<std::uint16_t> codes(4 * static_cast<std::size_t>(width) * static_cast<std::size_t>(height), outside);
     for (int j = 0; j < height; ++j) {
       const std::int64_t fy = std::int64_t{y} + j;
       if (fy < 0 || fy >= fb_.height()) continue;

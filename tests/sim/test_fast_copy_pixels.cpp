@@ -165,3 +165,63 @@ TEST_CASE("fast copy pixels: rows in bands on 2 and 3 threads == one thread == t
   MESSAGE("copies split into bands: " << split << " of " << 2 * kCases * 3);
   CHECK(split >= static_cast<std::uint64_t>(kCases));
 }
+
+TEST_CASE("fast copy pixels: rows read from the framebuffer itself (in place, or colour masked) == snapshot == reference") {
+  // With identity codes the fast path reads each row straight from the
+  // framebuffer, without a snapshot, when no fragment can write a source pixel
+  // before it is read: every image pixel lands on the pixel it was read from
+  // (zoom 1, the raster position rounding to the source corner; the paper's
+  // "CopyPixels the window onto itself"), or the colour mask keeps every channel.
+  // Random scenes, random fragment operations with blending forced on (a copy in
+  // place then changes every pixel it writes from the value it read), sources
+  // partly outside the window, at 1 and 2 threads (rows in bands), against the
+  // reference path. The in-place raster positions are the corner plus a fraction
+  // below 1/2 (which rounds to the corner); the masked ones are anywhere.
+#ifdef FFSIM_SANITIZE
+  constexpr int kCases = 6;
+#else
+  constexpr int kCases = 20;
+#endif
+  constexpr int W = 96, H = 72;
+  for (const char* profile : {"geforce256", "rgba12"})
+    for (int k = 0; k < kCases; ++k) {
+      const auto seed = static_cast<std::uint32_t>(7700 + k);
+      Context one(profile_named(profile), W, H), two(profile_named(profile), W, H), slow(profile_named(profile), W, H);
+      two.set_threads(2);
+      two.set_split_fragments(256);  // rows in bands however small the rectangle
+      slow.set_fast_paths(false);
+      SceneOptions opt;
+      opt.copy_pixels = false;
+      for (Context* c : {&one, &two, &slow}) {
+        draw_random_scene(*c, seed, opt);
+        SceneRng r(seed + 1);
+        for (int copy = 0; copy < 4; ++copy) {
+          c->disable(gl::TEXTURE_2D);
+          c->disable(gl::REGISTER_COMBINERS_NV);
+          random_fragment_ops(*c, r);
+          c->enable(gl::BLEND);
+          c->blendFunc(gl::ONE, gl::ONE);
+          c->blendEquation(copy % 2 ? gl::FUNC_ADD : gl::FUNC_REVERSE_SUBTRACT);
+          const bool masked = copy >= 2;
+          if (masked) c->colorMask(false, false, false, false);
+          else c->colorMask(true, true, true, r.b(50));
+          c->pixelZoom(1, masked && r.b(50) ? -1 : 1);
+          c->matrixMode(gl::PROJECTION);
+          c->loadIdentity();
+          c->ortho(0, W, 0, H, -1, 1);
+          c->matrixMode(gl::MODELVIEW);
+          c->loadIdentity();
+          const int x = r.i(-8, 20), y = r.i(-8, 20);
+          if (masked) c->rasterPos2(r.d(0, 30), r.d(0, 30));
+          else c->rasterPos2(std::max(x, 0) + r.d(0, 0.45), std::max(y, 0) + r.d(0, 0.45));
+          // (a raster position is valid inside the window only: a corner left of or
+          // below it is moved in, and the copy is then not in place: the snapshot)
+          c->copyPixels(x, y, r.i(40, 110), r.i(30, 90), gl::COLOR);
+        }
+      }
+      INFO("profile ", profile, " seed ", seed);
+      REQUIRE(buffer_hashes(one) == buffer_hashes(slow));
+      REQUIRE(buffer_hashes(two) == buffer_hashes(slow));
+      CHECK(two.fragments_written() == one.fragments_written());
+    }
+}
