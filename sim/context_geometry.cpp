@@ -214,8 +214,11 @@ void Context::end() {
   if (from_memo) {
     ++batch_memo_uses_;
     const auto base = static_cast<std::uint32_t>(shared_base);
+    const std::size_t at = batch_triangles_.size();
+    batch_triangles_.resize(at + batch_memo->triangles.size());  // (one size check, not one per triangle)
+    BatchTriangle* out = batch_triangles_.data() + at;
     for (const BatchMemo::Triangle& t : batch_memo->triangles)
-      batch_triangles_.push_back({{base + t.v[0], base + t.v[1], base + t.v[2]}, t.r0, t.r1});
+      *out++ = {{base + t.v[0], base + t.v[1], base + t.v[2]}, t.r0, t.r1};
     if (!batch_memo->triangles.empty()) {
       batch_r0_ = batch_before == 0 ? batch_memo->r0 : std::min(batch_r0_, batch_memo->r0);
       batch_r1_ = batch_before == 0 ? batch_memo->r1 : std::max(batch_r1_, batch_memo->r1);

@@ -1,5 +1,7 @@
 #include "sim/geometry_memo.h"
 
+#include <cstring>
+
 namespace ffsim {
 
 std::uint64_t GeometryMemo::hash_key(const GeometryKey& key, std::size_t n) {

@@ -18,7 +18,6 @@
 #include <bit>
 #include <cstddef>
 #include <cstdint>
-#include <cstring>
 #include <unordered_map>
 #include <vector>
 
@@ -146,7 +145,16 @@ const GeometryEntry* GeometryMemo::find(const GeometryKey& key, std::size_t n, s
                                         PositionOf position_of) {
   const auto it = entries_.find(hash(key, n, ph));
   bool same = it != entries_.end() && it->second.object.size() == n && same_key(it->second.key, key);
-  for (std::size_t i = 0; i < n && same; ++i) same = std::memcmp(&it->second.object[i], &position_of(i), sizeof(glm::dvec4)) == 0;
+  // Bit for bit (−0 is not +0; a NaN equals its own bits): each position's four
+  // coordinates as 64-bit words, or-ed together, one test per vertex.
+  const glm::dvec4* kept = it != entries_.end() ? it->second.object.data() : nullptr;
+  for (std::size_t i = 0; i < n && same; ++i) {
+    const glm::dvec4& a = kept[i];
+    const glm::dvec4& b = position_of(i);
+    std::uint64_t diff = 0;
+    for (int c = 0; c < 4; ++c) diff |= std::bit_cast<std::uint64_t>(a[c]) ^ std::bit_cast<std::uint64_t>(b[c]);
+    same = diff == 0;
+  }
   if (!same) {
     ++misses_;
     return nullptr;
