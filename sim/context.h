@@ -666,6 +666,7 @@ class Context {
     bool flat = false, shade = false, has_depth = false;
     int vx = 0, vy = 0;                      // viewport corner
     double hw = 0, hh = 0;                   // viewport half width and height
+    double area_scale = 0;                   // 2^-(2S+1): a snapped cross product to pixels of area (S subpixel bits)
     int cx0 = 0, cy0 = 0, cx1 = 0, cy1 = 0;  // the window, relative to the viewport corner
     bool bands = false;                      // threads: polygons batched and rows split (no probe)
     bool direct_writes = false;              // no probe: spans go to run_fragment_plan directly

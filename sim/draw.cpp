@@ -191,6 +191,7 @@ Context::DrawSetup Context::draw_setup(const ShadingState& st, const ShadingPlan
   ds.vy = viewport_[1];
   ds.hw = viewport_[2] / 2.0;
   ds.hh = viewport_[3] / 2.0;
+  ds.area_scale = std::ldexp(0.5, -2 * profile_.subpixel_bits);  // (once a glEnd, not a library call a triangle)
   // Window bounds relative to the viewport corner (pixel ownership, §4.1.1), in
   // 64 bits: the viewport corner may be any int.
   auto rel = [](int a, int origin) {
@@ -766,10 +767,11 @@ void Context::batch_triangle(std::size_t a, std::size_t b, std::size_t c, const 
   batch_r0_ = batch_triangles_.empty() ? r0 : std::min(batch_r0_, r0);
   batch_r1_ = batch_triangles_.empty() ? r1 : std::max(batch_r1_, r1);
   // Its fragments, about: its area in pixels, at most its clipped box's (in
-  // double: snapped coordinates reach 2^30, pipeline/raster/triangle.cpp).
+  // double: snapped coordinates reach 2^30, pipeline/raster/triangle.cpp). The
+  // scale is a power of two: the product is the quotient by 2^(2S+1), exactly.
   const double cross = (static_cast<double>(pb.x - pa.x) * static_cast<double>(pc.y - pa.y) -
-                        static_cast<double>(pb.y - pa.y) * static_cast<double>(pc.x - pa.x)) /
-                       std::ldexp(2.0, 2 * S);
+                        static_cast<double>(pb.y - pa.y) * static_cast<double>(pc.x - pa.x)) *
+                       ds.area_scale;
   const double box = static_cast<double>(r1 - r0) * (c1 - c0);
   batch_area_ += static_cast<std::int64_t>(std::min(std::abs(cross), box));
   batch_triangles_.push_back({{static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), static_cast<std::uint32_t>(c)}, r0, r1});

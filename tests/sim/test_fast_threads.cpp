@@ -328,6 +328,17 @@ TEST_CASE("fast threads: a batch is split by its triangles' areas, not their box
     CHECK(buffer_hashes(two) == buffer_hashes(one));
     CHECK(two.split_batches() == (big ? 1u : 0u));
   }
+  // The estimate is exact for these: the slivers' 1200 pixels split at a
+  // threshold of 1200 and not at 1201 (the cross product's scale to pixels,
+  // 2^-(2S+1), is DrawSetup::area_scale; 2^-(2S) would count 2400).
+  for (const std::int64_t threshold : {std::int64_t{1200}, std::int64_t{1201}}) {
+    Context two(profile_named("geforce256"), 160, 120);
+    two.set_threads(2);
+    two.set_split_fragments(threshold);
+    draw_triangles(two, slivers);
+    INFO("threshold ", threshold);
+    CHECK(two.split_batches() == (threshold == 1200 ? 1u : 0u));
+  }
   // A 64 x 36 window holds 2304 pixels, below kSplitFragments: however many
   // triangles a glEnd holds, its draw stays on the calling thread, unless the
   // threshold is lowered below the window.
