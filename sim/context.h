@@ -728,10 +728,10 @@ class Context {
   // (or a worker) for every triangle of it.
   bool raster_cache_applies(const DrawSetup& ds) const;
   // What a recording depends on (sim/raster_cache.h): the draw's window and rows
-  // (`rows`), then per triangle its snapped positions, depth codes and
-  // coords_reuse_mask; with `geometry` words (one glEnd's memo serial, or a
-  // batch's (serial, triangles) pairs: its glEnds in order), the words in place
-  // of the positions and depth codes.
+  // (`rows`), then per triangle its snapped positions and depth codes, then its
+  // coords_reuse_mask labels as runs; with `geometry` words (one glEnd's memo
+  // serial, or a batch's (serial, triangles) pairs: its glEnds in order), the
+  // words in place of the positions and depth codes.
   std::vector<std::int64_t> raster_key(const DrawSetup& ds, const TriangleRef* tris, std::size_t count,
                                        std::initializer_list<std::int64_t> rows,
                                        std::span<const std::uint64_t> geometry = {}) const;

@@ -31,7 +31,7 @@ std::vector<std::int64_t> Context::raster_key(const DrawSetup& ds, const Triangl
                                               std::span<const std::uint64_t> geometry) const {
   const bool named = !geometry.empty();
   std::vector<std::int64_t> key;
-  key.reserve(15 + rows.size() + geometry.size() + (named ? 1 : 10) * count);
+  key.reserve(17 + rows.size() + geometry.size() + (named ? 0 : 9 * count));
   // The first word tells the two forms apart: 0, every triangle's positions and
   // depth codes; 1, geometry memo serials, which name them (a serial is never
   // reused, and its entry's content never changes; the triangles are the
@@ -43,24 +43,39 @@ std::vector<std::int64_t> Context::raster_key(const DrawSetup& ds, const Triangl
   if (named) {
     key.push_back(static_cast<std::int64_t>(geometry.size()));
     for (const std::uint64_t w : geometry) key.push_back(static_cast<std::int64_t>(w));
+  } else {  // (9 words a triangle: count, in the header, says how many)
+    for (std::size_t i = 0; i < count; ++i)
+      for (const WindowVertex* v : tris[i]) key.insert(key.end(), {v->p.x, v->p.y, ds.has_depth ? v->depth : 0});
   }
   // coords_reuse_mask matters to the grouping only through which triangles'
   // masks are equal (a group closes when a triangle's differs from the group's):
   // each mask is keyed as the index of its first appearance in the sequence, so
-  // passes sampling other units of the same mesh share the recording.
+  // passes sampling other units of the same mesh share the recording. The labels
+  // close the key as runs, (label, length) pairs, each run as long as it goes:
+  // the same label sequences give the same pairs, and other ones other pairs.
   static_assert(kShadeUnits <= 5);
+  // Fewer than two sampled units: every mask is 0 (nothing to share), one run of
+  // label 0.
+  const bool shares = std::count(ds.plan->sample.begin(), ds.plan->sample.end(), true) >= 2;
+  if (!shares) {
+    if (count > 0) key.insert(key.end(), {0, static_cast<std::int64_t>(count)});
+    return key;
+  }
   std::array<int, 32> first_seen;  // by mask; -1: not yet
   first_seen.fill(-1);
   int distinct = 0;
-  // Fewer than two sampled units: every mask is 0 (nothing to share), label 0.
-  const bool shares = std::count(ds.plan->sample.begin(), ds.plan->sample.end(), true) >= 2;
+  std::int64_t run_label = -1, run_length = 0;
   for (std::size_t i = 0; i < count; ++i) {
-    if (!named)
-      for (const WindowVertex* v : tris[i]) key.insert(key.end(), {v->p.x, v->p.y, ds.has_depth ? v->depth : 0});
-    int& label = first_seen[shares ? coords_reuse_mask(*ds.plan, tris[i]) & 31u : 0u];
+    int& label = first_seen[coords_reuse_mask(*ds.plan, tris[i]) & 31u];
     if (label < 0) label = distinct++;
-    key.push_back(label);
+    if (label != run_label) {
+      if (run_length > 0) key.insert(key.end(), {run_label, run_length});
+      run_label = label;
+      run_length = 0;
+    }
+    ++run_length;
   }
+  if (run_length > 0) key.insert(key.end(), {run_label, run_length});
   return key;
 }
 

@@ -140,7 +140,8 @@ TEST_CASE("raster cache: a replay needs the same positions, depths and pattern o
   // One strip drawn again unchanged (a hit), moved in depth (a miss), with unit
   // 1's coordinates other than unit 0's at every vertex (every triangle's
   // coords_reuse_mask changes alike: the same groups, a hit), at some vertices
-  // only (triangles of different masks: a miss), then as the first time (a hit).
+  // only (triangles of different masks: a miss), at some more (the same masks,
+  // one run longer: a miss), then as the first time (a hit).
   // The same calls with the cache off leave the same buffers.
   Context c(profile_named("geforce256"), 64, 64), off(profile_named("geforce256"), 64, 64);
   off.set_raster_cache(false);
@@ -160,13 +161,13 @@ TEST_CASE("raster cache: a replay needs the same positions, depths and pattern o
     x->enable(gl::BLEND);
     x->blendFunc(gl::ONE, gl::ONE);
   }
-  enum Coords { kSame, kOther, kMixed };  // unit 1's against unit 0's
+  enum Coords { kSame, kOther, kMixed, kMixedEarlier };  // unit 1's against unit 0's
   auto strip = [&](double z, Coords coords) {
     for (Context* x : {&c, &off}) {
       x->begin(gl::TRIANGLE_STRIP);
       for (int i = 0; i <= 4; ++i)
         for (int j : {1, 0}) {
-          const bool other = coords == kOther || (coords == kMixed && i >= 3);
+          const bool other = coords == kOther || (coords == kMixed && i >= 3) || (coords == kMixedEarlier && i >= 2);
           x->multiTexCoord2(gl::TEXTURE0, i / 4.0, j);
           x->multiTexCoord2(gl::TEXTURE1, other ? j : i / 4.0, other ? i / 4.0 : j);
           x->vertex3(3 + 14.5 * i, 5 + 40.0 * j, z);
@@ -184,15 +185,21 @@ TEST_CASE("raster cache: a replay needs the same positions, depths and pattern o
   CHECK(c.raster_cache().hits() == 2);
   strip(0.25, kMixed);
   CHECK(c.raster_cache().misses() == 3);
-  strip(0.25, kSame);
+  // The same two masks in the same order, the change two triangles earlier: the
+  // key's runs of labels differ in length (a miss); kMixed again is a hit.
+  strip(0.25, kMixedEarlier);
+  CHECK(c.raster_cache().misses() == 4);
+  strip(0.25, kMixed);
   CHECK(c.raster_cache().hits() == 3);
+  strip(0.25, kSame);
+  CHECK(c.raster_cache().hits() == 4);
   CHECK(buffer_hashes(c) == buffer_hashes(off));
   CHECK(off.raster_cache().hits() + off.raster_cache().misses() == 0);
   CHECK(c.raster_cache().bytes() > 0);
   c.set_raster_cache(false);
   CHECK(c.raster_cache().bytes() == 0);
   strip(0.25, kSame);
-  CHECK(c.raster_cache().hits() == 3);
+  CHECK(c.raster_cache().hits() == 4);
   CHECK(buffer_hashes(c) == buffer_hashes(off));
 }
 
