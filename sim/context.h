@@ -731,7 +731,8 @@ class Context {
   // (`rows`), then per triangle its snapped positions and depth codes, then its
   // coords_reuse_mask labels as runs; with `geometry` words (one glEnd's memo
   // serial, or a batch's (serial, triangles) pairs: its glEnds in order), the
-  // words in place of the positions and depth codes.
+  // words in place of the positions and depth codes. `tris` is read for the
+  // positions (no `geometry`) and for the masks (coords_may_be_reused) only.
   std::vector<std::int64_t> raster_key(const DrawSetup& ds, const TriangleRef* tris, std::size_t count,
                                        std::initializer_list<std::int64_t> rows,
                                        std::span<const std::uint64_t> geometry = {}) const;

@@ -837,14 +837,17 @@ void Context::flush_batch(const DrawSetup& ds) {
   const std::vector<RasterRecording>* replay = nullptr;
   std::vector<RasterRecording> recorded;
   if (cache) {
-    sequence_scratch_.clear();
-    for (const BatchTriangle& t : batch_triangles_) sequence_scratch_.push_back(tri(t));
     // The glEnds' memo serials name the triangles when each of them had one (and
     // they account for every triangle); else every triangle's positions.
     std::uint64_t named = 0;
     for (std::size_t i = 1; i < batch_geometry_.size(); i += 2) named += batch_geometry_[i];
     const bool by_serial = !batch_unkeyed_ && named == batch_triangles_.size();
-    key = raster_key(ds, sequence_scratch_.data(), sequence_scratch_.size(), {r0, rows, bands},
+    // The key reads the triangles for their positions, or their coords_reuse_mask;
+    // named, with fewer than two sampled units, it reads neither.
+    sequence_scratch_.clear();
+    if (!by_serial || coords_may_be_reused(*ds.plan))
+      for (const BatchTriangle& t : batch_triangles_) sequence_scratch_.push_back(tri(t));
+    key = raster_key(ds, sequence_scratch_.data(), batch_triangles_.size(), {r0, rows, bands},
                      by_serial ? std::span<const std::uint64_t>(batch_geometry_) : std::span<const std::uint64_t>());
     replay = raster_cache_.find(key);
     if (!replay) recorded.resize(static_cast<std::size_t>(bands));

@@ -56,8 +56,7 @@ std::vector<std::int64_t> Context::raster_key(const DrawSetup& ds, const Triangl
   static_assert(kShadeUnits <= 5);
   // Fewer than two sampled units: every mask is 0 (nothing to share), one run of
   // label 0.
-  const bool shares = std::count(ds.plan->sample.begin(), ds.plan->sample.end(), true) >= 2;
-  if (!shares) {
+  if (!coords_may_be_reused(*ds.plan)) {  // (tris is then read only without `geometry`)
     if (count > 0) key.insert(key.end(), {0, static_cast<std::int64_t>(count)});
     return key;
   }

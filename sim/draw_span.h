@@ -27,6 +27,12 @@ struct WindowVertex {
 // t/q (computed once). (−0 == +0 gives the same sums, every sum starts from +0;
 // a NaN never compares equal: it recomputes.)
 unsigned coords_reuse_mask(const ShadingPlan& plan, const std::array<const WindowVertex*, 3>& tv);
+// Fewer than two sampled units: every coords_reuse_mask is 0, whatever the triangle.
+inline bool coords_may_be_reused(const ShadingPlan& plan) {
+  int sampled = 0;
+  for (const bool s : plan.sample) sampled += s ? 1 : 0;
+  return sampled >= 2;
+}
 
 // s/q and t/q of unit u at the fragments of `runs` of a triangle (sim/draw_span.cpp):
 // the per-fragment path's binary64 values rounded to binary32, as the sampler
