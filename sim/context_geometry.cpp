@@ -115,7 +115,7 @@ void Context::end() {
     const auto object_at = [object](std::size_t i) -> const glm::dvec4& { return object[i].position; };
     // (a replayed run's record keeps its positions' hash; a miss inserts with it)
     positions_hash = fill.pending ? fill.pending->positions_hash : GeometryMemo::positions_hash(n, object_at);
-    geo = geometry_memo_.find(gkey, n, positions_hash, object_at);
+    geo = geometry_memo_.find(gkey, n, positions_hash, object_at, fill.pending ? fill.pending->serial : 0);
   }
   if (!geo) {
     if (fill.pending) run_vertices(*fill.pending, fill, v.data());
@@ -166,6 +166,7 @@ void Context::end() {
       e.p.resize(n);
       e.depth.resize(ds.has_depth ? n : 0);
       e.one_point = true;
+      e.same_run = fill.pending ? fill.pending->serial : 0;  // (its positions were copied from the record)
       for (std::size_t i = 0; i < n; ++i) {
         e.iw[i] = 1.0 / v[i].position.w;
         window_position(v[i].position, e.iw[i], ds, w[i]);

@@ -67,6 +67,9 @@ struct GeometryEntry {
   // glEnd has area, so none makes a fragment (triangle_never_covers).
   bool one_point = false;
   mutable BatchMemo batch;           // (derived from the above: made when first needed)
+  // A vertex-run record (VertexRunMemo::Record::serial) whose positions are these
+  // bit for bit, compared once or inserted from; 0: none.
+  mutable std::uint64_t same_run = 0;
 };
 
 class GeometryMemo {
@@ -86,8 +89,12 @@ class GeometryMemo {
   static std::uint64_t positions_hash(std::size_t n, PositionOf position_of);
   // The entry for `key` and the n object positions at position_of(i), whose
   // positions_hash is `ph`, or null. (The positions are compared, not only hashed.)
+  // `run`: the serial of the vertex-run record the positions are (0: none); a
+  // serial names one record's positions, which never change, so an entry that
+  // matched them once (GeometryEntry::same_run) is not compared with them again.
   template <class PositionOf>
-  const GeometryEntry* find(const GeometryKey& key, std::size_t n, std::uint64_t ph, PositionOf position_of);
+  const GeometryEntry* find(const GeometryKey& key, std::size_t n, std::uint64_t ph, PositionOf position_of,
+                            std::uint64_t run = 0);
   // A new entry (its vectors empty but `object`), with a serial of its own; the
   // caller fills iw, p and depth. Replaces an entry of the same hash.
   template <class PositionOf>
@@ -105,6 +112,8 @@ class GeometryMemo {
 
   std::uint64_t hits() const { return hits_; }
   std::uint64_t misses() const { return misses_; }
+  // Hits whose positions were not compared (the entry's same_run).
+  std::uint64_t run_hits() const { return run_hits_; }
   std::size_t size() const { return entries_.size(); }
 
  private:
@@ -121,7 +130,7 @@ class GeometryMemo {
   std::unordered_map<std::uint64_t, GeometryEntry> entries_;  // by hash; the key is compared
   std::uint64_t hash_mask_;
   std::size_t vertices_ = 0;
-  std::uint64_t next_serial_ = 1, hits_ = 0, misses_ = 0;
+  std::uint64_t next_serial_ = 1, hits_ = 0, misses_ = 0, run_hits_ = 0;
 };
 
 // ---- implementation ------------------------------------------------------------
@@ -142,9 +151,14 @@ std::uint64_t GeometryMemo::positions_hash(std::size_t n, PositionOf position_of
 
 template <class PositionOf>
 const GeometryEntry* GeometryMemo::find(const GeometryKey& key, std::size_t n, std::uint64_t ph,
-                                        PositionOf position_of) {
+                                        PositionOf position_of, std::uint64_t run) {
   const auto it = entries_.find(hash(key, n, ph));
   bool same = it != entries_.end() && it->second.object.size() == n && same_key(it->second.key, key);
+  if (same && run != 0 && it->second.same_run == run) {
+    ++hits_;
+    ++run_hits_;
+    return &it->second;
+  }
   // Bit for bit (−0 is not +0; a NaN equals its own bits): each position's four
   // coordinates as 64-bit words, or-ed together, one test per vertex.
   const glm::dvec4* kept = it != entries_.end() ? it->second.object.data() : nullptr;
@@ -160,6 +174,7 @@ const GeometryEntry* GeometryMemo::find(const GeometryKey& key, std::size_t n, s
     return nullptr;
   }
   ++hits_;
+  if (run != 0) it->second.same_run = run;
   return &it->second;
 }
 

@@ -70,6 +70,9 @@ class VertexRunMemo {
     std::array<double, 4> exit_color_clamped{}, exit_secondary_clamped{};
     std::vector<ClipVertex> vertices;  // inside glBegin/glEnd: the vertices the run made
     std::uint64_t positions_hash = 0;  // GeometryMemo::positions_hash of their object positions
+    // Names this record's vertices, which never change (never 0; a replacing
+    // record, or one after clear(), has a new serial): GeometryEntry::same_run.
+    std::uint64_t serial = 0;
   };
 
   const Record* find(std::uint64_t id) const {
@@ -85,6 +88,7 @@ class VertexRunMemo {
     }
     if (vertices_ + n > kMaxVertices) clear();
     Record& r = records_[id];
+    r.serial = next_serial_++;
     r.vertices.assign(vertices, vertices + n);
     vertices_ += n;
     return r;
@@ -100,7 +104,7 @@ class VertexRunMemo {
   std::uint64_t misses() const { return misses_; }
 
  private:
-  std::uint64_t hits_ = 0, misses_ = 0;
+  std::uint64_t hits_ = 0, misses_ = 0, next_serial_ = 1;
   std::unordered_map<std::uint64_t, Record> records_;
   std::size_t vertices_ = 0;
 };

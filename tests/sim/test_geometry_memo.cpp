@@ -313,6 +313,42 @@ TEST_CASE("geometry memo: keys are compared whole, field by field and bit for bi
   CHECK(memo.insert(base, pos.size(), at(pos)).serial > last);  // serials are never reused
 }
 
+TEST_CASE("geometry memo: a vertex-run record's positions are compared with an entry once, the key always") {
+  // Every hash collides (0 bits kept): only the comparisons tell entries apart.
+  GeometryMemo memo(0);
+  GeometryKey key;
+  key.mode = gl::TRIANGLE_STRIP;
+  key.hw = 32;
+  key.hh = 16;
+  const std::vector<glm::dvec4> pos{{1, 2, 0, 1}, {3, 4, 0.5, 1}, {5, 6, -0.5, 1}};
+  std::vector<glm::dvec4> moved = pos;
+  moved[1].y = std::nextafter(4.0, 5.0);
+  auto at = [](const std::vector<glm::dvec4>& v) {
+    return [&v](std::size_t i) -> const glm::dvec4& { return v[i]; };
+  };
+  const std::uint64_t ph = GeometryMemo::positions_hash(pos.size(), at(pos));
+  GeometryEntry& e = memo.insert(key, pos.size(), ph, at(pos));
+  CHECK(e.same_run == 0);
+  REQUIRE(memo.find(key, pos.size(), ph, at(pos), 5) == &e);  // compared, then named by run 5
+  CHECK(memo.run_hits() == 0);
+  CHECK(e.same_run == 5);
+  CHECK(memo.find(key, pos.size(), ph, at(pos), 5) == &e);  // not compared
+  CHECK(memo.run_hits() == 1);
+  CHECK(memo.find(key, moved.size(), ph, at(moved), 6) == nullptr);  // another run: compared
+  CHECK(e.same_run == 5);
+  GeometryKey other = key;
+  other.hw = 33;
+  CHECK(memo.find(other, pos.size(), ph, at(pos), 5) == nullptr);  // the key is compared whatever the run
+  CHECK(memo.find(key, pos.size(), ph, at(pos)) == &e);             // no run: compared
+  CHECK(memo.run_hits() == 1);
+  // A replacing entry is named by no run until compared (or made from one).
+  GeometryEntry& f = memo.insert(key, moved.size(), ph, at(moved));
+  CHECK(f.same_run == 0);
+  CHECK(memo.find(key, pos.size(), ph, at(pos), 5) == nullptr);
+  CHECK(memo.run_hits() == 1);
+  CHECK(memo.hits() == 3);
+}
+
 TEST_CASE("geometry memo: a glEnd at one window point is skipped whole, zero-area triangles are left out; == memo off == "
           "per-fragment path at 1 and 2 threads") {
   // The paper traces' polygon scene draws the terrain scaled by 0: every vertex

@@ -35,7 +35,7 @@ struct Outcome {
   RunResult result;
   std::array<double, 4> color, secondary, normal;
   std::vector<std::array<double, 4>> texcoord;
-  std::uint64_t hits = 0, misses = 0, record_reads = 0;
+  std::uint64_t hits = 0, misses = 0, record_reads = 0, geometry_run_hits = 0;
 };
 
 Outcome run(const Program& p, int mode) {  // 0: memo on, 1: memo off, 2: per-fragment path (memo off with it)
@@ -52,6 +52,7 @@ Outcome run(const Program& p, int mode) {  // 0: memo on, 1: memo off, 2: per-fr
   o.hits = c.vertex_run_memo().hits();
   o.misses = c.vertex_run_memo().misses();
   o.record_reads = c.run_record_reads();
+  o.geometry_run_hits = c.geometry_memo().run_hits();
   return o;
 }
 
@@ -226,6 +227,10 @@ TEST_CASE("vertex runs: a replay's vertices are read from its record until somet
   CHECK(on.hits == 6);
   CHECK(on.record_reads == 2);  // the second and the fifth glEnd
   CHECK(off.record_reads == 0);
+  // The geometry memo compared the second glEnd's positions (the record's) with
+  // the entry the first made; the fifth, of the same record, is not compared again.
+  CHECK(on.geometry_run_hits == 1);
+  CHECK(off.geometry_run_hits == 0);
   check_same(on, off);
   check_same(on, ref);
 }
@@ -328,4 +333,11 @@ TEST_CASE("vertex runs: the memo keeps at most kMaxVertices vertices; a record r
   r.insert(9, vertices.data(), 1);
   CHECK(r.size() == 1);  // one vertex more than the bound: emptied first
   CHECK(r.find(9) != nullptr);
+  // Serials name records: never 0, new for a replacing record and after clear().
+  const std::uint64_t s9 = r.find(9)->serial;
+  CHECK(s9 > 0);
+  CHECK(r.insert(9, vertices.data(), 1).serial > s9);
+  const std::uint64_t again = r.find(9)->serial;
+  r.clear();
+  CHECK(r.insert(9, vertices.data(), 1).serial > again);
 }
