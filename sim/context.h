@@ -897,7 +897,7 @@ class Context {
     int r0, r1;
   };
   WindowVertices batch_vertices_;
-  std::vector<BatchTriangle> batch_triangles_;
+  FilledVector<BatchTriangle> batch_triangles_;  // (a memo'd glEnd's are sized, then each written: context_geometry.cpp)
   // The batch's glEnds as (geometry memo serial, triangles it added) pairs, in
   // order, for the raster key; batch_unkeyed_: some triangle of the batch came
   // without a serial (the key then holds every triangle's positions).

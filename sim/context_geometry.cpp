@@ -216,7 +216,7 @@ void Context::end() {
     ++batch_memo_uses_;
     const auto base = static_cast<std::uint32_t>(shared_base);
     const std::size_t at = batch_triangles_.size();
-    batch_triangles_.resize(at + batch_memo->triangles.size());  // (one size check, not one per triangle)
+    batch_triangles_.resize(at + batch_memo->triangles.size());  // (one size check, not one per triangle; no fill)
     BatchTriangle* out = batch_triangles_.data() + at;
     for (const BatchMemo::Triangle& t : batch_memo->triangles)
       *out++ = {{base + t.v[0], base + t.v[1], base + t.v[2]}, t.r0, t.r1};

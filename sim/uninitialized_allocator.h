@@ -4,7 +4,8 @@
 // away by the span path), the framebuffer's buffers (zero-filled when first
 // taken, or wholly written by a clear; sim/framebuffer.h), the draw path's
 // window vertices (every member written by Context::window_position and
-// window_attributes; sim/draw_span.h) and the span path's per-group scratch
+// window_attributes; sim/draw_span.h), a batch's triangles (a memo'd glEnd's
+// sized, then each written: Context::end) and the span path's per-group scratch
 // (sim/context.h SpanScratch). The memcheck CTests (tests/CMakeLists.txt) check
 // that nothing is read before it is written.
 #pragma once
