@@ -243,6 +243,7 @@ struct TraceRow {
   double fragments = 0;  // per frame
   Timing t;              // seconds per frame
   Timing serial;         // of each frame, seconds the calling thread spent outside the pool's runs
+  double ceiling = 0;    // threads > 1 in the threads table: parallel_ceiling just before the row
 };
 
 Sets scene_sets(const TraceCase& c) {
@@ -434,7 +435,9 @@ std::string perf_usage() {
          "           hardware threads, each speed-up against one thread, and the machine's\n"
          "           parallel ceiling (a cache-resident loop per thread, all at once) before\n"
          "           and after the table; for each threaded row its serial part (the calling\n"
-         "           thread outside the pool's runs) and Amdahl's bound from it\n"
+         "           thread outside the pool's runs), Amdahl's bound from it, the ceiling\n"
+         "           measured just before the row and the machine bound (Amdahl's with the\n"
+         "           split part at that ceiling)\n"
          "Median of --repeat N runs (default 7; 3 with --quick) after one warm-up, with min and max.\n"
          "--quick: 256^2 stages, the smaller sizes, about a minute. Writes perf_stages.csv,\n"
          "perf_traces.csv, perf_scaling.csv, perf_threads.csv, perf_threads_serial.csv and\n"
@@ -445,11 +448,23 @@ std::string perf_usage() {
          "part: the time this thread spent outside the pool's runs).\n";
 }
 
-double amdahl_bound(double one_thread_s, double serial_s, int threads) {
-  if (!(one_thread_s > 0) || threads < 1 || !(serial_s >= 0)) return 0;
+namespace {
+// one_thread_s / (serial_s + split / speed), split = one_thread_s - serial_s (>= 0).
+double split_bound(double one_thread_s, double serial_s, double speed) {
+  if (!(one_thread_s > 0) || !(speed >= 1) || !(serial_s >= 0)) return 0;
   const double split = std::max(0.0, one_thread_s - serial_s);
-  const double t = serial_s + split / threads;
+  const double t = serial_s + split / speed;
   return t > 0 ? one_thread_s / t : 0;
+}
+}  // namespace
+
+double amdahl_bound(double one_thread_s, double serial_s, int threads) {
+  return split_bound(one_thread_s, serial_s, threads);
+}
+
+double machine_bound(double one_thread_s, double serial_s, int threads, double ceiling) {
+  if (threads < 1 || !(ceiling > 0)) return 0;
+  return split_bound(one_thread_s, serial_s, std::clamp(ceiling, 1.0, static_cast<double>(threads)));
 }
 
 int run_perf(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
@@ -570,7 +585,11 @@ int run_perf(const std::vector<std::string>& args, std::ostream& out, std::ostre
             const bool terrain = std::string(scene) == "terrain";
             const int w = terrain ? (o.quick ? 320 : 640) : (o.quick ? 256 : 1024);
             const int h = terrain ? (o.quick ? 240 : 480) : w;
+            // The machine's ceiling for this row, just before it (its speed changes
+            // from minute to minute): the row's machine bound reads against it.
+            const double ceiling = n > 1 ? parallel_ceiling(n, 3) : 0;
             thread_rows.push_back(run_trace_case(o, {t, scene, w, h, n}, o.repeat));
+            thread_rows.back().ceiling = ceiling;
             frame_line(thread_rows.back(), csv, "threads");
           }
       // Speed-ups against the same trace and scene on one thread (this table's row).
@@ -587,29 +606,37 @@ int run_perf(const std::vector<std::string>& args, std::ostream& out, std::ostre
       // Where each threaded frame goes: the calling thread's serial part (outside
       // the pool's runs) and the rest, and Amdahl's bound from that serial part.
       Csv split_csv(fs::path(o.out_dir) / "perf_threads_serial.csv",
-                    "trace,scene,width,height,threads,median_s,serial_median_s,one_thread_median_s,speedup,amdahl_bound");
+                    "trace,scene,width,height,threads,median_s,serial_median_s,one_thread_median_s,speedup,amdahl_bound,"
+                    "machine_ceiling,machine_bound");
       std::ostringstream split_md, split_out;
       for (const TraceRow& r : thread_rows)
         for (const TraceRow& one : thread_rows)
           if (r.c.threads > 1 && one.c.threads == 1 && one.c.trace == r.c.trace && one.c.scene == r.c.scene) {
             const double bound = amdahl_bound(one.t.median, r.serial.median, r.c.threads);
+            const double mbound = machine_bound(one.t.median, r.serial.median, r.c.threads, r.ceiling);
             const double speedup = one.t.median / r.t.median;
             split_out << "  " << cell(r.c.trace + " " + r.c.scene, 32) << r.c.threads << " threads: serial "
                 << fixed(r.serial.median * 1e3, 3) << " ms of " << fixed(r.t.median * 1e3, 3) << " ms, speed-up "
-                << fixed(speedup, 2) << "x, Amdahl bound " << fixed(bound, 2) << "x\n";
+                << fixed(speedup, 2) << "x, Amdahl bound " << fixed(bound, 2) << "x; machine ceiling "
+                << fixed(r.ceiling, 2) << "x, machine bound " << fixed(mbound, 2) << "x\n";
             split_md << "| " << r.c.trace << " | " << r.c.scene << " | " << r.c.threads << " | " << fixed(r.t.median * 1e3, 3)
                      << " | " << fixed(r.serial.median * 1e3, 3) << " | " << fixed(100 * r.serial.median / r.t.median, 0)
-                     << " % | " << fixed(speedup, 2) << "x | " << fixed(bound, 2) << "x |\n";
+                     << " % | " << fixed(speedup, 2) << "x | " << fixed(bound, 2) << "x | " << fixed(r.ceiling, 2) << "x | "
+                     << fixed(mbound, 2) << "x |\n";
             split_csv.f << r.c.trace << "," << r.c.scene << "," << r.c.width << "," << r.c.height << "," << r.c.threads << ","
-                        << r.t.median << "," << r.serial.median << "," << one.t.median << "," << speedup << "," << bound << "\n";
+                        << r.t.median << "," << r.serial.median << "," << one.t.median << "," << speedup << "," << bound << ","
+                        << r.ceiling << "," << mbound << "\n";
           }
       if (!split_out.str().empty())
-        out << "serial part (the calling thread outside the pool's runs) and Amdahl's bound from it:\n" << split_out.str();
+        out << "serial part (the calling thread outside the pool's runs), Amdahl's bound from it, the machine's ceiling "
+                  "just before the row and the bound with the rest split at that ceiling:\n" << split_out.str();
       if (!split_md.str().empty())
         md << "\nWhere each threaded frame goes (medians; serial: the calling thread outside the pool's runs, "
-              "`Context::pool_seconds`; Amdahl bound: one thread's frame / (serial + the rest / threads); "
-              "docs/performance.md 31):\n\n| trace | scene | threads | frame ms | serial ms | serial share | speed-up | "
-              "Amdahl bound |\n| --- | --- | --- | --- | --- | --- | --- | --- |\n"
+              "`Context::pool_seconds`; Amdahl bound: one thread's frame / (serial + the rest / threads), "
+              "docs/performance.md 31; machine ceiling: this machine's speed-up for a cache-resident loop per "
+              "thread, measured just before the row; machine bound: Amdahl's with the rest / that ceiling, "
+              "docs/performance.md 33):\n\n| trace | scene | threads | frame ms | serial ms | serial share | speed-up | "
+              "Amdahl bound | machine ceiling | machine bound |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n"
            << split_md.str();
       if (!ceiling_before.empty()) {
         const std::string ceiling_after = ceilings();

@@ -22,4 +22,14 @@ std::string perf_usage();
 // one_thread_s / serial_s. 0 for a non-positive time or thread count.
 double amdahl_bound(double one_thread_s, double serial_s, int threads);
 
+// The same bound on this machine: the split part runs `ceiling` times as fast as
+// on one thread instead of `threads` times, where `ceiling` is the machine's own
+// speed-up for independent work on `threads` threads measured just before the
+// row (parallel_ceiling: a cache-resident loop per thread), taken in [1, threads]:
+// one_thread_s / (serial_s + (one_thread_s - serial_s) / ceiling). A frame that
+// reaches it loses nothing beyond its serial part and what the machine itself
+// loses when its cores run at once (docs/performance.md 33). 0 as amdahl_bound
+// for nonsense, and for a ceiling that is not a positive number.
+double machine_bound(double one_thread_s, double serial_s, int threads, double ceiling);
+
 }  // namespace ffsim::bench

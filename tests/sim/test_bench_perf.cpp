@@ -131,14 +131,16 @@ TEST_CASE("bench --perf: the threads table prints each speed-up and the machine'
   // text, perf.md's table and perf_threads_serial.csv (header and 6 rows).
   CHECK(count(r.out, " 2 threads: serial ") == 6);
   CHECK(count(r.out, ", Amdahl bound ") == 6);
-  CHECK(text.str().find("| trace | scene | threads | frame ms | serial ms | serial share | speed-up | Amdahl bound |") !=
-        std::string::npos);
+  CHECK(count(r.out, "; machine ceiling ") == 6);
+  CHECK(text.str().find("| trace | scene | threads | frame ms | serial ms | serial share | speed-up | Amdahl bound | "
+                        "machine ceiling | machine bound |") != std::string::npos);
   const auto split_rows = read_csv(dir / "perf_threads_serial.csv");
   REQUIRE(split_rows.size() == 7);
   CHECK(split_rows[0] == std::vector<std::string>{"trace", "scene", "width", "height", "threads", "median_s", "serial_median_s",
-                                                  "one_thread_median_s", "speedup", "amdahl_bound"});
+                                                  "one_thread_median_s", "speedup", "amdahl_bound", "machine_ceiling",
+                                                  "machine_bound"});
   for (std::size_t i = 1; i < split_rows.size(); ++i) {
-    REQUIRE(split_rows[i].size() == 10);
+    REQUIRE(split_rows[i].size() == 12);
     CHECK(split_rows[i][4] == "2");
     // The serial part is a part of the frame; the bound is above 0 and at most
     // the thread count.
@@ -148,8 +150,35 @@ TEST_CASE("bench --perf: the threads table prints each speed-up and the machine'
     CHECK(serial <= median);
     CHECK(bound > 0);
     CHECK(bound <= 2.0 + 1e-9);
+    // The machine bound is Amdahl's with the split part at the row's ceiling
+    // (clamped to [1, threads]): at most Amdahl's, and what machine_bound gives.
+    const double ceiling = std::stod(split_rows[i][10]), mbound = std::stod(split_rows[i][11]);
+    CHECK(ceiling > 0);
+    CHECK(mbound > 0);
+    CHECK(mbound <= bound + 1e-9);
+    CHECK(mbound == doctest::Approx(ffsim::bench::machine_bound(std::stod(split_rows[i][7]), serial, 2, ceiling)));
   }
   fs::remove_all(dir);
+}
+
+TEST_CASE("bench --perf: the machine bound, hand-derived values") {
+  using ffsim::bench::machine_bound;
+  // 4 ms on one thread, 1 ms serial, 2 threads on a machine whose ceiling is
+  // 1.5x: 4 / (1 + 3/1.5) = 4/3.
+  CHECK(machine_bound(4e-3, 1e-3, 2, 1.5) == doctest::Approx(4.0 / 3.0));
+  // A ceiling of the thread count: Amdahl's bound, 4 / (1 + 3/2) = 1.6; above
+  // it (noise): clamped to the thread count; below 1 (a loaded machine): 1, so
+  // the bound is 1 (no split part can run slower than on one thread here).
+  CHECK(machine_bound(4e-3, 1e-3, 2, 2.0) == doctest::Approx(1.6));
+  CHECK(machine_bound(4e-3, 1e-3, 2, 2.3) == doctest::Approx(1.6));
+  CHECK(machine_bound(4e-3, 1e-3, 2, 0.8) == doctest::Approx(1.0));
+  // No serial part: the ceiling itself.
+  CHECK(machine_bound(4e-3, 0, 2, 1.7) == doctest::Approx(1.7));
+  // Nonsense in, 0 out (never NaN or Inf): no ceiling measured, NaN, bad times.
+  CHECK(machine_bound(4e-3, 1e-3, 2, 0) == 0);
+  CHECK(machine_bound(4e-3, 1e-3, 2, std::nan("")) == 0);
+  CHECK(machine_bound(0, 1e-3, 2, 1.5) == 0);
+  CHECK(machine_bound(4e-3, 1e-3, 0, 1.5) == 0);
 }
 
 TEST_CASE("bench --perf: Amdahl's bound, hand-derived values") {
