@@ -494,6 +494,9 @@ class Context {
   std::uint64_t split_triangles() const { return split_triangles_; }
   // glEnds whose batch triangles came from their geometry memo entry (BatchMemo).
   std::uint64_t batch_memo_uses() const { return batch_memo_uses_; }
+  // Deferred glEnds that reused the pending batch's shading state, plan and
+  // set-up instead of making them again (Context::end; docs/performance.md 33).
+  std::uint64_t deferred_setup_reuses() const { return deferred_setup_reuses_; }
   // Pixel rectangles (CopyPixels) whose rows went through the fragment
   // operations in bands on the pool (docs/performance.md 19.6).
   std::uint64_t split_pixel_rects() const { return split_pixel_rects_; }
@@ -809,7 +812,7 @@ class Context {
   std::uint64_t split_pixel_rects_ = 0;
   std::uint64_t split_uploads_ = 0;
   std::uint64_t split_clears_ = 0;
-  std::uint64_t one_point_draws_ = 0;
+  std::uint64_t one_point_draws_ = 0, deferred_setup_reuses_ = 0;
   std::chrono::steady_clock::duration pool_time_{0};  // pool_seconds()
   // Scratch of the span path, reused from run to run (sim/draw_span.cpp).
   // (alignas(64): the bands' scratch never share a cache line, so two threads'

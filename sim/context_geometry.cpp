@@ -87,10 +87,21 @@ void Context::end() {
   ShadingPlan plan_here;
   ShadingState& st = defer ? deferred_st_ : st_here;
   ShadingPlan& plan = defer ? deferred_plan_ : plan_here;
-  st = shading_state();
-  plan = shading_plan(st);
+  // Deferred with a batch pending: only glBegin, glEnd and vertex data reached
+  // the Context since the glEnd that left it (set_defer_draws' promise), and
+  // shading_state, shading_plan and draw_setup read none of those, so that
+  // glEnd's state, plan and set-up are this one's: reused, not recomputed. Every
+  // flush (flush_batch, however it ends) clears batch_pending_, so a glEnd after
+  // one recomputes them, and draw_setup's group clearing runs again.
+  const bool reuse = defer && batch_pending_;
+  if (!reuse) {
+    st = shading_state();
+    plan = shading_plan(st);
+  } else {
+    ++deferred_setup_reuses_;
+  }
   if (on_explain_ && n >= 3) on_explain_(ffsim::explain_shading(st, plan));
-  const DrawSetup ds = draw_setup(st, plan);
+  const DrawSetup ds = reuse ? deferred_ds_ : draw_setup(st, plan);
   // One thread: each polygon is drawn at once. Threads: the polygons are prepared
   // into batches, each rasterized in row bands (sim/draw.cpp, docs/performance.md).
   if (ds.bands && !batch_pending_) clear_batch();

@@ -809,6 +809,7 @@ void Context::flush_batch(const DrawSetup& ds) {
     ~Done() {
       c.clear_batch();
       c.sum_band_counts();
+      c.batch_pending_ = false;  // (the next glEnd makes its set-up again: Context::end)
     }
   } done{*this};
   if (batch_triangles_.empty()) return;

@@ -30,10 +30,12 @@ namespace {
 // kSplitFragments, drawn twice over: as triangle strips (one glEnd per row of
 // cells, 20 triangles) and as one GL_TRIANGLES batch of all 120. Random
 // textures, sometimes combiners, random fragment operations, then the depth
-// test and blending forced on for the second pass.
+// test and blending forced on for the second pass. `defer`: with deferred draws
+// (Context::set_defer_draws), flush_deferred() before each pass's state changes
+// and at the end, as the trace executor calls it.
 constexpr int kMeshW = 160, kMeshH = 120, kCellsX = 10, kCellsY = 6;
 
-void draw_mesh_scene(Context& c, std::uint32_t seed) {
+void draw_mesh_scene(Context& c, std::uint32_t seed, bool defer = false) {
   SceneRng r(seed);
   random_clear_and_projection(c, r, 0.5);
   struct V {
@@ -64,6 +66,7 @@ void draw_mesh_scene(Context& c, std::uint32_t seed) {
     c.vertex3(v.x, v.y, v.z + dz);
   };
   for (int pass = 0; pass < 2; ++pass) {
+    if (defer) c.flush_deferred();
     for (int u = 0; u < 2; ++u) random_texture_or_off(c, r, u, static_cast<std::uint32_t>(1 + u + 2 * pass), 75);
     if (r.b(40)) random_combiners(c, r);
     else c.disable(gl::REGISTER_COMBINERS_NV);
@@ -97,6 +100,7 @@ void draw_mesh_scene(Context& c, std::uint32_t seed) {
       c.end();
     }
   }
+  if (defer) c.flush_deferred();
 }
 
 // 300 small triangles (sides up to 24 pixels) piled on the middle of a 128 x 96
@@ -263,6 +267,35 @@ TEST_CASE("fast threads: a mesh of small triangles is split by rows as whole bat
         }
     }
   CHECK(batches > 0);
+}
+
+TEST_CASE("fast threads: deferred glEnds reuse the pending batch's set-up, and the next pass's state is seen") {
+  // The mesh scene with deferred draws: pass 0's six strips join one batch, the
+  // five after the first reusing its shading state, plan and set-up
+  // (Context::end); pass 1 changes textures, combiners, fragment operations,
+  // depth test and blending after a flush and must be drawn with them. A reuse
+  // after the flush (a stale set-up) would draw pass 1 with pass 0's state.
+  std::uint64_t reuses = 0;
+  for (const char* profile : kFastProfiles)
+    for (std::uint32_t seed = 700; seed < 703; ++seed) {
+      INFO("profile ", std::string(profile), " seed ", seed);
+      Context one(profile_named(profile), kMeshW, kMeshH);
+      draw_mesh_scene(one, seed);
+      Context many(profile_named(profile), kMeshW, kMeshH);
+      many.set_threads(2);
+      many.set_split_fragments(1024);
+      many.set_defer_draws(true);
+      draw_mesh_scene(many, seed, true);
+      REQUIRE(buffer_hashes(many) == buffer_hashes(one));
+      CHECK(many.fragments_written() == one.fragments_written());
+      CHECK(one.deferred_setup_reuses() == 0);
+      // Flat shading in pass 0 (a fifth of the seeds) keeps the polygons apart
+      // (no shared vertices) but not the batch: five reuses either way.
+      CHECK(many.deferred_setup_reuses() == 5);
+      CHECK(many.split_batches() == 2);  // (pass 0's strips as one batch, pass 1's glEnd)
+      reuses += many.deferred_setup_reuses();
+    }
+  CHECK(reuses > 0);
 }
 
 TEST_CASE("fast threads: overlapping triangles of one batch keep their order in every pixel at 1 to 4 threads") {
