@@ -2,6 +2,10 @@
 
 #include <cstring>
 
+#ifdef __AVX2__
+#include <immintrin.h>
+#endif
+
 namespace ffsim {
 
 std::uint64_t GeometryMemo::hash_key(const GeometryKey& key, std::size_t n) {
@@ -22,6 +26,34 @@ bool GeometryMemo::same_key(const GeometryKey& a, const GeometryKey& b) {
   return a.mode == b.mode && a.subpixel_bits == b.subpixel_bits && a.depth_bits == b.depth_bits &&
          same(a.modelview, b.modelview) && same(a.projection, b.projection) && same(a.hw, b.hw) && same(a.hh, b.hh) &&
          same(a.depth_near, b.depth_near) && same(a.depth_far, b.depth_far);
+}
+
+void rebase_triangles(const std::uint32_t* in, std::size_t n, std::uint32_t base, std::uint32_t* out) {
+  std::size_t t = 0;
+#ifdef __AVX2__
+  // Word w of a block of eight triangles is a vertex index when w mod 5 < 3:
+  // vector k (words 8k .. 8k + 7) adds base in those lanes, 0 in the others.
+  __m256i add[5];
+  for (int k = 0; k < 5; ++k) {
+    alignas(32) std::uint32_t lane[8];
+    for (int j = 0; j < 8; ++j) lane[j] = (8 * k + j) % 5 < 3 ? base : 0u;
+    add[k] = _mm256_load_si256(reinterpret_cast<const __m256i*>(lane));
+  }
+  for (; t + 8 <= n; t += 8) {
+    const std::uint32_t* src = in + 5 * t;
+    std::uint32_t* dst = out + 5 * t;
+    for (int k = 0; k < 5; ++k)
+      _mm256_storeu_si256(reinterpret_cast<__m256i*>(dst + 8 * k),
+                          _mm256_add_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(src + 8 * k)), add[k]));
+  }
+#endif
+  for (; t < n; ++t) {
+    const std::uint32_t* src = in + 5 * t;
+    std::uint32_t* dst = out + 5 * t;
+    for (int k = 0; k < 3; ++k) dst[k] = base + src[k];
+    dst[3] = src[3];
+    dst[4] = src[4];
+  }
 }
 
 void GeometryMemo::clear() {

@@ -414,3 +414,22 @@ TEST_CASE("geometry memo: a glEnd at one window point is skipped whole, zero-are
   for (Context* c : all) draw_strip(*c, {});
   same("the strip after them");
 }
+
+TEST_CASE("geometry memo: rebase_triangles adds base to each triangle's three indices and copies its rows, any count") {
+  // Against the word-by-word definition: counts 0 .. 41 (the eight-triangle
+  // blocks, and every tail), bases that wrap around 2^32, rows of any sign;
+  // nothing past the n triangles is written.
+  SceneRng r(4242);
+  for (const std::uint32_t base : {0u, 1u, 123457u, 0xFFFFFFF0u})
+    for (std::size_t n = 0; n <= 41; ++n) {
+      std::vector<std::uint32_t> in(5 * n), out(5 * n + 7, 0xABABABABu);
+      for (std::uint32_t& w : in) w = static_cast<std::uint32_t>(r.i(0, 0x7FFFFFFF)) * 2u + (r.b(50) ? 1u : 0u);
+      rebase_triangles(in.data(), n, base, out.data());
+      INFO("base ", base, " n ", n);
+      for (std::size_t w = 0; w < 5 * n; ++w) {
+        const std::uint32_t want = w % 5 < 3 ? static_cast<std::uint32_t>(base + in[w]) : in[w];
+        REQUIRE(out[w] == want);
+      }
+      for (std::size_t w = 5 * n; w < out.size(); ++w) REQUIRE(out[w] == 0xABABABABu);
+    }
+}
