@@ -388,6 +388,9 @@ int time_one_trace(const Options& o, std::ostream& out, std::ostream& err) {
     std::uint64_t fragments = 0;
     std::ostringstream sink;
     const int threads = o.thread_counts.empty() ? 1 : o.thread_counts.front();
+    // The machine's ceiling for that many threads just before the frames, as the
+    // threads table measures it before each row (docs/performance.md 33.3).
+    const double ceiling = threads > 1 ? parallel_ceiling(threads, 3) : 0;
     for (int r = 0; r <= o.repeat; ++r) {
       Context ctx(prog.profile, prog.width, prog.height);
       const auto t0 = Clock::now();
@@ -407,7 +410,10 @@ int time_one_trace(const Options& o, std::ostream& out, std::ostream& err) {
     if (threads > 1)
       out << "serial part (this thread outside the pool's runs): median " << fixed(spread(serial).median * 1e3, 3)
           << " ms of each frame; with one thread's frame time T1 the speed-up is at most T1 / (serial + (T1 - serial) / "
-          << threads << ") (docs/performance.md 31)\n";
+          << threads << ") (docs/performance.md 31)\n"
+          << "parallel ceiling of this machine just before these frames (a cache-resident loop per thread): "
+          << fixed(ceiling, 2) << "x; the machine bound is T1 / (serial + (T1 - serial) / " << fixed(std::clamp(ceiling, 1.0, static_cast<double>(threads)), 2)
+          << ") (docs/performance.md 33)\n";
   } catch (const trace::TraceError& e) {
     err << "ffsim bench --perf: " << e.what() << "\n";
     return 1;
@@ -445,7 +451,8 @@ std::string perf_usage() {
          "(default docs/results). Never fails on a number.\n"
          "--trace FILE: replay one trace --repeat times (loaded once, outputs off) and print its\n"
          "median frame time, frames/s and Mfragments/s (with --threads N > 1 also the median serial\n"
-         "part: the time this thread spent outside the pool's runs).\n";
+         "part: the time this thread spent outside the pool's runs, and this machine's parallel ceiling\n"
+         "measured just before the frames).\n";
 }
 
 namespace {

@@ -97,6 +97,30 @@ TEST_CASE("bench --perf: bad arguments are one-line usage errors") {
   fs::remove_all(fs::temp_directory_path() / "ffsim-perf-missing", ec);
 }
 
+TEST_CASE("bench --perf --trace: one thread prints the frame; two also the serial part and the machine's ceiling") {
+  // The polygon scene at its small defaults (64x64, 64^2 maps, 16 rays).
+  const std::vector<std::string> base{"bench", "--perf", "--trace", FFSIM_SOURCE_DIR "/traces/kautz-geforce-aa.trace",
+                                      "--set", "rays=16", "--repeat", "1"};
+  const Run one = run(base);
+  REQUIRE(one.code == 0);
+  CHECK(one.out.find(" frames/s, ") != std::string::npos);
+  CHECK(one.out.find("serial part") == std::string::npos);
+  CHECK(one.out.find("parallel ceiling") == std::string::npos);
+  std::vector<std::string> args = base;
+  args.insert(args.end(), {"--threads", "2"});
+  const Run two = run(args);
+  REQUIRE(two.code == 0);
+  CHECK(two.out.find("serial part (this thread outside the pool's runs): median ") != std::string::npos);
+  const std::size_t at = two.out.find("parallel ceiling of this machine just before these frames");
+  REQUIRE(at != std::string::npos);
+  // The bound's divisor is the ceiling taken in [1, 2].
+  const std::size_t d = two.out.find("(T1 - serial) / ", at);
+  REQUIRE(d != std::string::npos);
+  const double c = std::stod(two.out.substr(d + 16));
+  CHECK(c >= 1.0);
+  CHECK(c <= 2.0);
+}
+
 // (One run, at --quick and --repeat 1: under the sanitizers it still takes a
 // few minutes, the longest test of the ASan build.)
 TEST_CASE("bench --perf: the threads table prints each speed-up and the machine's ceiling beside it") {
