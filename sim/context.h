@@ -895,10 +895,9 @@ class Context {
   // The batch: window vertices of its polygons, and its triangles in drawing
   // order (a fan of each polygon) with the rows [r0, r1) their bounding boxes may
   // cover; the rows of all of them, and the summed bounding-box area.
-  struct BatchTriangle {
-    std::array<std::uint32_t, 3> v;
-    int r0, r1;
-  };
+  // (the type a geometry memo entry keeps them in, indices relative to its
+  // glEnd's first vertex: appended by rebase_triangles)
+  using BatchTriangle = BatchMemo::Triangle;
   WindowVertices batch_vertices_;
   FilledVector<BatchTriangle> batch_triangles_;  // (a memo'd glEnd's are sized, then each written: context_geometry.cpp)
   // The batch's glEnds as (geometry memo serial, triangles it added) pairs, in

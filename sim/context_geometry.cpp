@@ -3,7 +3,6 @@
 // raster position. Primitives are assembled at glEnd and drawn by
 // sim/draw.cpp (clipping, rasterization, shading).
 #include <algorithm>
-#include <cstddef>
 #include <cmath>
 #include <initializer_list>
 #include <stdexcept>
@@ -229,12 +228,7 @@ void Context::end() {
     const auto base = static_cast<std::uint32_t>(shared_base);
     const std::size_t at = batch_triangles_.size();
     batch_triangles_.resize(at + batch_memo->triangles.size());  // (one size check, not one per triangle; no fill)
-    // (the same five words in both: rebase_triangles adds base to the indices)
-    static_assert(sizeof(BatchTriangle) == 5 * sizeof(std::uint32_t) && sizeof(BatchMemo::Triangle) == sizeof(BatchTriangle));
-    static_assert(offsetof(BatchTriangle, r0) == offsetof(BatchMemo::Triangle, r0) &&
-                  offsetof(BatchTriangle, r1) == offsetof(BatchMemo::Triangle, r1) && offsetof(BatchTriangle, r0) == 12);
-    rebase_triangles(reinterpret_cast<const std::uint32_t*>(batch_memo->triangles.data()), batch_memo->triangles.size(), base,
-                     reinterpret_cast<std::uint32_t*>(batch_triangles_.data() + at));
+    rebase_triangles(batch_memo->triangles.data(), batch_memo->triangles.size(), base, batch_triangles_.data() + at);
     if (!batch_memo->triangles.empty()) {
       batch_r0_ = batch_before == 0 ? batch_memo->r0 : std::min(batch_r0_, batch_memo->r0);
       batch_r1_ = batch_before == 0 ? batch_memo->r1 : std::max(batch_r1_, batch_memo->r1);

@@ -1,5 +1,6 @@
 #include "sim/geometry_memo.h"
 
+#include <cstddef>
 #include <cstring>
 
 #ifdef __AVX2__
@@ -28,7 +29,12 @@ bool GeometryMemo::same_key(const GeometryKey& a, const GeometryKey& b) {
          same(a.depth_near, b.depth_near) && same(a.depth_far, b.depth_far);
 }
 
-void rebase_triangles(const std::uint32_t* in, std::size_t n, std::uint32_t base, std::uint32_t* out) {
+void rebase_triangles(const BatchMemo::Triangle* in_triangles, std::size_t n, std::uint32_t base,
+                      BatchMemo::Triangle* out_triangles) {
+  static_assert(sizeof(BatchMemo::Triangle) == 5 * sizeof(std::uint32_t) && offsetof(BatchMemo::Triangle, r0) == 12,
+                "five words, the indices first");
+  const auto* in = reinterpret_cast<const std::uint32_t*>(in_triangles);  // (int rows: the same bits as uint32_t)
+  auto* out = reinterpret_cast<std::uint32_t*>(out_triangles);
   std::size_t t = 0;
 #ifdef __AVX2__
   // Word w of a block of eight triangles is a vertex index when w mod 5 < 3:

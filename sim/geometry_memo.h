@@ -45,9 +45,9 @@ struct GeometryKey {
 // a later glEnd of the entry in the same window appends them as they are
 // (docs/performance.md 20.6); another window makes them again.
 struct BatchMemo {
-  struct Triangle {  // (the layout of Context::BatchTriangle: rebase_triangles)
-    std::array<std::uint32_t, 3> v;
-    int r0, r1;
+  struct Triangle {  // (also Context::BatchTriangle, the batch's)
+    std::array<std::uint32_t, 3> v;  // vertex indices
+    int r0, r1;                      // rows
   };
   bool valid = false;
   int cx0 = 0, cy0 = 0, cx1 = 0, cy1 = 0;
@@ -56,12 +56,12 @@ struct BatchMemo {
   std::int64_t area = 0;  // the sum batch_triangle adds to the batch's area
 };
 
-// `n` triangles of five 32-bit words each, (v0, v1, v2, r0, r1) as in
-// BatchMemo::Triangle and Context::BatchTriangle, from `in` to `out` with `base`
-// added to the three vertex indices (modulo 2^32, as base + v in uint32_t) and the
-// rows copied: a memo'd glEnd's triangles appended to the batch after its
-// vertices. Eight triangles (40 words, five 256-bit vectors) at a time.
-void rebase_triangles(const std::uint32_t* in, std::size_t n, std::uint32_t base, std::uint32_t* out);
+// `n` triangles from `in` to `out` with `base` added to each one's three vertex
+// indices (modulo 2^32, as base + v in uint32_t) and its rows copied: a memo'd
+// glEnd's triangles appended to the batch after its vertices. A triangle is five
+// 32-bit words, (v0, v1, v2, r0, r1): eight (40 words, five 256-bit vectors) at
+// a time.
+void rebase_triangles(const BatchMemo::Triangle* in, std::size_t n, std::uint32_t base, BatchMemo::Triangle* out);
 
 struct GeometryEntry {
   std::uint64_t serial = 0;

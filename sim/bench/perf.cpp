@@ -119,6 +119,10 @@ double parallel_ceiling(int n, int repeats) {
   return all > 0 ? n * one / all : 0;
 }
 
+// The speed-up the split part of a frame can have on this machine: its ceiling
+// for `threads` threads, taken in [1, threads] (machine_bound).
+double machine_speed(int threads, double ceiling) { return std::clamp(ceiling, 1.0, static_cast<double>(threads)); }
+
 trace::Program load(const std::string& path, const Sets& sets) {
   trace::LoadOptions lo;
   lo.sets = sets;
@@ -412,7 +416,7 @@ int time_one_trace(const Options& o, std::ostream& out, std::ostream& err) {
           << " ms of each frame; with one thread's frame time T1 the speed-up is at most T1 / (serial + (T1 - serial) / "
           << threads << ") (docs/performance.md 31)\n"
           << "parallel ceiling of this machine just before these frames (a cache-resident loop per thread): "
-          << fixed(ceiling, 2) << "x; the machine bound is T1 / (serial + (T1 - serial) / " << fixed(std::clamp(ceiling, 1.0, static_cast<double>(threads)), 2)
+          << fixed(ceiling, 2) << "x; the machine bound is T1 / (serial + (T1 - serial) / " << fixed(machine_speed(threads, ceiling), 2)
           << ") (docs/performance.md 33)\n";
   } catch (const trace::TraceError& e) {
     err << "ffsim bench --perf: " << e.what() << "\n";
@@ -471,7 +475,7 @@ double amdahl_bound(double one_thread_s, double serial_s, int threads) {
 
 double machine_bound(double one_thread_s, double serial_s, int threads, double ceiling) {
   if (threads < 1 || !(ceiling > 0)) return 0;
-  return split_bound(one_thread_s, serial_s, std::clamp(ceiling, 1.0, static_cast<double>(threads)));
+  return split_bound(one_thread_s, serial_s, machine_speed(threads, ceiling));
 }
 
 int run_perf(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {

@@ -8,6 +8,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstring>
 #include <vector>
 
 #include "draw_test_util.h"
@@ -422,9 +423,14 @@ TEST_CASE("geometry memo: rebase_triangles adds base to each triangle's three in
   SceneRng r(4242);
   for (const std::uint32_t base : {0u, 1u, 123457u, 0xFFFFFFF0u})
     for (std::size_t n = 0; n <= 41; ++n) {
-      std::vector<std::uint32_t> in(5 * n), out(5 * n + 7, 0xABABABABu);
+      // (the triangles as their words: two sentinel triangles past the n)
+      std::vector<std::uint32_t> in(5 * n), out(5 * n + 10, 0xABABABABu);
       for (std::uint32_t& w : in) w = static_cast<std::uint32_t>(r.i(0, 0x7FFFFFFF)) * 2u + (r.b(50) ? 1u : 0u);
-      rebase_triangles(in.data(), n, base, out.data());
+      std::vector<BatchMemo::Triangle> tin(n), tout(n + 2);
+      if (n > 0) std::memcpy(tin.data(), in.data(), 4 * in.size());
+      std::memcpy(tout.data(), out.data(), 4 * out.size());
+      rebase_triangles(tin.data(), n, base, tout.data());
+      std::memcpy(out.data(), tout.data(), 4 * out.size());
       INFO("base ", base, " n ", n);
       for (std::size_t w = 0; w < 5 * n; ++w) {
         const std::uint32_t want = w % 5 < 3 ? static_cast<std::uint32_t>(base + in[w]) : in[w];
