@@ -364,6 +364,10 @@ class Context {
   std::size_t fragment_plan_cache_size() const { return fragment_plans_.size(); }
   // describe() of the current plan, for --explain / per-draw logs.
   std::string explain_fragment_ops();
+  // For a glEnd pass: when nothing shades and the colour stage, fed the current
+  // colour's codes, keeps every destination of the channels it writes, a line
+  // saying so (docs/performance.md 34.1); else "".
+  std::string explain_constant_source();
 
 
   // ==== [issue 5] register combiners ====
@@ -526,6 +530,10 @@ class Context {
     std::uint64_t joined = 0, met = 0;
     std::uint64_t coords_recorded = 0;  // groups whose texture coordinates came from a recording
     std::uint64_t depth_reused = 0;     // groups whose depth test took a replay's comparisons (RecordedGroup::depth_test)
+    // Groups left out because they could change no buffer: one source colour
+    // that the colour stage keeps (colour_stage_keeps), and no depth or stencil
+    // write (docs/performance.md 34.1); their fragments are counted as written.
+    std::uint64_t unwritten = 0;
   };
   SpanGroupStats span_group_stats() const;
 
@@ -844,6 +852,7 @@ class Context {
     std::uint64_t joined = 0, met = 0;  // span_group_stats
     std::uint64_t coords_recorded = 0;  // span_group_stats
     std::uint64_t depth_reused = 0;     // span_group_stats
+    std::uint64_t unwritten = 0;        // span_group_stats
     // The raster cache: the recording being made (null: none), the index in the
     // sequence of the triangle being rasterized, and that index for each of
     // `triangles`.

@@ -5,6 +5,7 @@
 // A call with an invalid token raises INVALID_ENUM and changes nothing (§2.5).
 #include <algorithm>
 
+#include "pipeline/fragment/constant_source.h"
 #include "pipeline/gl/enum_names.h"
 #include "sim/context.h"
 
@@ -141,6 +142,20 @@ const FragmentConstants& Context::fragment_plan_constants() {
 std::string Context::explain_fragment_ops() {
   update_fragment_plan();
   return describe(*fragment_current_plan_, fragment_current_constants_);
+}
+
+std::string Context::explain_constant_source() {
+  const ShadingState st = shading_state();
+  if (shading_active(shading_plan(st)) || st.color.arith != Arithmetic::Fixed) return "";
+  update_fragment_plan();
+  const FragmentPlan& plan = *fragment_current_plan_;
+  // (the codes window_attributes_n gives a vertex of the current colour)
+  const std::array<std::uint32_t, 4> code = rgba_from_values(current_color_clamped_, st.color).code;
+  if (!plan.write_color || !colour_stage_keeps(plan.key, fragment_current_constants_, code)) return "";
+  return "  colour: with the colour codes (" + std::to_string(code[0]) + ", " + std::to_string(code[1]) + ", " +
+         std::to_string(code[2]) + ", " + std::to_string(code[3]) +
+         ") at every vertex, each written channel stores back its destination: the span path leaves out the "
+         "groups whose depth and stencil tests write nothing too\n";
 }
 
 }  // namespace ffsim

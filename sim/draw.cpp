@@ -11,11 +11,13 @@
 //   texture coordinates perspective-correct in binary64:
 //     s = Σ w_k·s_k/w_clip_k / Σ w_k·q_k/w_clip_k  (then s/q is what is sampled).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <utility>
 
 #include "pipeline/combiners/register_combiners.h"
+#include "pipeline/fragment/constant_source.h"
 #include "pipeline/number/snorm.h"
 #include "pipeline/number/unorm.h"
 #include "sim/probe.h"
@@ -348,6 +350,19 @@ void prefetch_run(const FragmentBuffers& b, int width, int height, int y, int x0
     for (std::size_t p = p0; p < p1 + 16; p += 16) __builtin_prefetch(b.depth + std::min(p, p1), 1);
 }
 
+// The colour codes every fragment of a group gets when nothing shades them
+// (interpolate_colors, sim/draw_span.cpp): true when each triangle's primary
+// codes are constant (flat shading: the provoking vertex's, tv[0]; else three
+// equal codes, whose interpolation is that code) and the same for all.
+bool group_source(bool flat, const std::vector<GroupTriangle>& tris, std::array<std::uint32_t, 4>& out) {
+  if (tris.empty()) return false;
+  out = tris.front().tv[0]->color_code;
+  for (const GroupTriangle& t : tris)
+    if (t.tv[0]->color_code != out || (!flat && (t.tv[1]->color_code != out || t.tv[2]->color_code != out)))
+      return false;
+  return true;
+}
+
 // The bits of the pixels [x0, x0 + n) of a row (n < 64: two words at most): the
 // word index and the masks of that word and the next.
 struct RowBits {
@@ -369,6 +384,7 @@ Context::SpanGroupStats Context::span_group_stats() const {
     g.met += sc.met;
     g.coords_recorded += sc.coords_recorded;
     g.depth_reused += sc.depth_reused;
+    g.unwritten += sc.unwritten;
   };
   add(span_scratch_);
   for (const SpanScratch& b : band_scratch_) add(b);
@@ -437,6 +453,23 @@ void Context::shade_group_runs(const DrawSetup& ds, FragmentSpan& span, int band
     memo = &g.from->depth_test;
     if (memo->epoch == fb_.depth_epoch() && memo->func == key.depth_func && (!memo->would_store || !key.depth_write))
       dt.known = memo->cmp.data();
+  }
+  // A group that can change no buffer is neither shaded nor written, only
+  // counted (docs/performance.md 34.1): nothing shades (the fragments' colour
+  // is the primary colour's codes, one quadruple for the whole group), the
+  // colour stage keeps every destination for that colour, no stencil
+  // operation writes, and the depth test writes nothing (off, its mask off, or
+  // the replay's comparisons just taken say no fragment would store). Not
+  // while recording: a later replay reads what this group records.
+  if (!recorded && !ds.shade && (!key.depth || !key.depth_write || dt.known) &&
+      (!key.stencil || stencil_ops_kept(key))) {
+    std::array<std::uint32_t, 4> source;
+    if (group_source(ds.flat, sc.triangles, source) &&
+        colour_stage_keeps(key, fragment_current_constants_, source)) {
+      count_written(band, static_cast<std::uint64_t>(runs.count), static_cast<std::uint64_t>(runs.runs));
+      ++sc.unwritten;
+      return;
+    }
   }
   FragmentBuffers ahead = ds.buffers;  // (the depth lines are not read with known comparisons)
   if (dt.known) ahead.depth = nullptr;

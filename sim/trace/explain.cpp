@@ -76,7 +76,7 @@ std::string explain_shading_pass(Context& ctx, const PassInfo& pass) {
 
 std::string explain_fragment_pass(Context& ctx, const PassInfo& pass) {
   if (!pass.is_pass || pass.step.name == "glClear") return "";
-  return with_newline(ctx.explain_fragment_ops());
+  return with_newline(ctx.explain_fragment_ops()) + (pass.step.name == "glEnd" ? ctx.explain_constant_source() : "");
 }
 
 std::string explain_combiners_pass(Context& ctx, const PassInfo& pass) {

@@ -8,10 +8,13 @@
 #include <cmath>
 #include <cstdint>
 #include <random>
+#include <set>
+#include <tuple>
 #include <vector>
 
 #include "fragment_harness.h"
 #include "pipeline/fragment/blend.h"
+#include "pipeline/fragment/constant_source.h"
 
 using namespace ffsim;
 
@@ -410,4 +413,114 @@ TEST_CASE("blend8 on listed pixels and rows: every equation, factor pair and col
         }
   CHECK(wrong == 0);
   CHECK(compared == 5L * 13 * 12 * 2 * n * 4);
+}
+
+// colour_stage_keeps (pipeline/fragment/constant_source.h): a colour stage fed one
+// known source colour is said to keep every destination only when it does. The
+// truth is computed here by brute force over destinations with blend_code and
+// blend_factor (the formula the reference above checks), and for a sample of the
+// "keeps" answers by the planned path itself on a buffer of every (d_c, A_d).
+TEST_CASE("colour_stage_keeps: exact where it says yes, for every equation, factor pair, mask and source (8 bits)") {
+  const FragmentTarget t{256, 256, Arithmetic::Fixed, 8, 0, 0};
+  const std::uint32_t kCodes[] = {0, 1, 128, 255};
+  const std::array<std::array<bool, 4>, 4> kMasks{{{true, true, true, true}, {false, false, false, true},
+                                                    {true, true, true, false}, {true, false, true, false}}};
+  const std::array<std::array<double, 4>, 2> kConstants{{{0, 0, 0, 0}, {1, 0, 1, 1}}};
+  // The planned path on a buffer holding d = (x, x, x, y) at pixel (x, y).
+  ffsim::test::Buffers every(t);
+  for (int y = 0; y < 256; ++y)
+    for (int x = 0; x < 256; ++x)
+      for (int c = 0; c < 4; ++c) every.codes[4 * every.px(x, y) + c] = static_cast<std::uint16_t>(c == 3 ? y : x);
+  std::set<std::tuple<FragmentPlanKey, std::array<std::uint32_t, 4>, std::array<std::uint32_t, 4>>> seen;
+  long said_yes = 0, missed = 0, kernel_runs = 0;
+  bool paper_case = false;
+  for (GLenum eq : kEquations)
+    for (GLenum sf : kSrcFactors)
+      for (GLenum df : kDstFactors)
+        for (const auto& mask : kMasks)
+          for (const auto& constant : kConstants)
+            for (std::uint32_t rgb : kCodes)
+              for (std::uint32_t a : kCodes) {
+                FragmentOpsState s;
+                s.blend = {true, sf, df, eq, constant};
+                s.color_mask = mask;
+                const FragmentPlanKey key = fragment_plan_key(s, t);
+                const FragmentConstants k = fragment_constants(s, t);
+                const std::array<std::uint32_t, 4> src{rgb, rgb, rgb, a};
+                // (each distinct question once: the key drops what no channel uses)
+                if (!seen.insert({key, k.blend_color_code, src}).second) continue;
+                const bool yes = colour_stage_keeps(key, k, src);
+                // Brute force: every (d_c, A_d), every written channel.
+                bool keeps = true;
+                for (std::uint32_t y = 0; y < 256 && keeps; ++y)
+                  for (std::uint32_t x = 0; x < 256 && keeps; ++x) {
+                    const std::uint32_t d[4] = {x, x, x, y};
+                    for (int c = 0; c < 4 && keeps; ++c)
+                      if (mask[static_cast<std::size_t>(c)])
+                        keeps = blend_code(eq, src[static_cast<std::size_t>(c)],
+                                           blend_factor<std::uint32_t>(sf, c, src.data(), d, k.blend_color_code.data(), 255),
+                                           d[c], blend_factor<std::uint32_t>(df, c, src.data(), d, k.blend_color_code.data(), 255),
+                                           255) == d[c];
+                  }
+                if (yes && !keeps)
+                  FAIL_CHECK("says keeps but does not: " << blend_equation_name(eq) << " " << blend_factor_name(sf) << " "
+                                                         << blend_factor_name(df) << " source " << rgb << "," << a);
+                said_yes += yes;
+                missed += keeps && !yes;
+                paper_case |= yes && eq == gl::FUNC_ADD && sf == gl::DST_ALPHA && df == gl::ONE && a == 0 && !mask[0] && mask[3];
+                if (yes && said_yes % 97 == 1) {  // the planned path leaves the buffer as it is
+                  ffsim::test::Buffers b = every;
+                  FragmentSpan sp;
+                  sp.count = 256;
+                  for (int x = 0; x < 256; ++x)
+                    for (std::uint32_t c : src) sp.codes.push_back(static_cast<std::uint16_t>(c));
+                  const FragmentPlan plan = build_fragment_plan(key);
+                  for (int y = 0; y < 256; ++y) {
+                    sp.y = y;
+                    run_fragment_plan(plan, k, sp, b.view(), t.width);
+                  }
+                  REQUIRE(b.same(every));
+                  ++kernel_runs;
+                }
+              }
+  MESSAGE("distinct cases: " << seen.size() << ", said keeps: " << said_yes << ", keeps but not said: " << missed << ", checked on the planned path: " << kernel_runs);
+  CHECK(paper_case);  // the paper's third penumbra pass at penumbra 2 (section 4.2)
+  CHECK(said_yes > 1000);
+  CHECK(kernel_runs > 10);
+}
+
+TEST_CASE("colour_stage_keeps: hand cases, 8 and 12 bits, and float arithmetic never") {
+  for (const int bits : {8, 12}) {
+    const std::uint32_t M = (1u << bits) - 1;
+    const FragmentTarget t{4, 4, Arithmetic::Fixed, bits, 0, 0};
+    auto keeps = [&](GLenum eq, GLenum sf, GLenum df, std::array<std::uint32_t, 4> src,
+                     std::array<bool, 4> mask = {true, true, true, true}) {
+      FragmentOpsState s;
+      s.blend = {true, sf, df, eq, {}};
+      s.color_mask = mask;
+      return colour_stage_keeps(fragment_plan_key(s, t), fragment_constants(s, t), src);
+    };
+    const std::array<bool, 4> alpha_only{false, false, false, true};
+    CHECK(keeps(gl::FUNC_ADD, gl::DST_ALPHA, gl::ONE, {0, 0, 0, 0}, alpha_only));        // A_s·A_d + A_d, A_s = 0
+    CHECK_FALSE(keeps(gl::FUNC_ADD, gl::DST_ALPHA, gl::ONE, {0, 0, 0, 1}, alpha_only));  // the smallest A_s changes A_d = M/2
+    CHECK(keeps(gl::FUNC_ADD, gl::ONE, gl::ONE, {0, 0, 0, 0}));
+    CHECK(keeps(gl::FUNC_REVERSE_SUBTRACT, gl::ONE, gl::ONE, {0, 0, 0, 0}));
+    CHECK_FALSE(keeps(gl::FUNC_SUBTRACT, gl::ONE, gl::ONE, {0, 0, 0, 0}));  // 0 − d clamps to 0
+    CHECK(keeps(gl::FUNC_ADD, gl::SRC_ALPHA, gl::ONE_MINUS_SRC_ALPHA, {M, 7, 0, 0}));  // A_s = 0: S = 0, D = M
+    CHECK_FALSE(keeps(gl::FUNC_ADD, gl::SRC_ALPHA, gl::ONE_MINUS_SRC_ALPHA, {M, 7, 0, 1}));
+    CHECK(keeps(gl::MIN, gl::ONE, gl::ONE, {M, M, M, M}));
+    CHECK_FALSE(keeps(gl::MIN, gl::ONE, gl::ONE, {M, M, M - 1, M}));
+    CHECK(keeps(gl::MAX, gl::ONE, gl::ONE, {0, 0, 0, 0}));
+    CHECK_FALSE(keeps(gl::MAX, gl::ONE, gl::ONE, {0, 1, 0, 0}));
+    CHECK(keeps(gl::FUNC_ADD, gl::ZERO, gl::ONE, {5, 5, 5, 5}));   // a kept channel (the key's own rule)
+    CHECK_FALSE(keeps(gl::FUNC_ADD, gl::ONE, gl::ZERO, {0, 0, 0, 0}));  // the source copied
+    CHECK(keeps(gl::FUNC_ADD, gl::ONE, gl::ZERO, {0, 0, 0, 0}, {false, false, false, false}));  // nothing written
+    CHECK_FALSE(keeps(gl::FUNC_ADD, gl::ONE, gl::ONE, {0, 0, 0, M + 1}));  // not a code
+    // Spot check of the claim's arithmetic at this width: n = d·M rounds to d.
+    for (std::uint32_t d = 0; d <= M; ++d) REQUIRE(blend_code(gl::FUNC_ADD, 0, M, d, M, M) == d);
+  }
+  const FragmentTarget f{4, 4, Arithmetic::Float64, 8, 0, 0};
+  FragmentOpsState s;
+  s.blend = {true, gl::ONE, gl::ONE, gl::FUNC_ADD, {}};
+  CHECK_FALSE(colour_stage_keeps(fragment_plan_key(s, f), fragment_constants(s, f), {0, 0, 0, 0}));
 }

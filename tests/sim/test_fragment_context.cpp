@@ -183,6 +183,30 @@ TEST_CASE("explain: the current plan as text") {
   CHECK(t.find("  scissor: x 0..3, y 0..0\n") != std::string::npos);
 }
 
+TEST_CASE("explain: a colour stage that keeps every destination for the current colour says so") {
+  // The paper's third penumbra pass at penumbra 2 (section 4.2): DST_ALPHA, ONE on
+  // alpha with A_s = 0 stores A_d back; with A_s = 1/255 it does not; a texture
+  // shades the fragments, so their colour is not the current colour.
+  Context ctx = make();
+  ctx.colorMask(false, false, false, true);
+  ctx.enable(gl::BLEND);
+  ctx.blendFunc(gl::DST_ALPHA, gl::ONE);
+  ctx.color4(0, 0, 0, 0);
+  CHECK(ctx.explain_constant_source() ==
+        "  colour: with the colour codes (0, 0, 0, 0) at every vertex, each written channel stores back its "
+        "destination: the span path leaves out the groups whose depth and stencil tests write nothing too\n");
+  ctx.color4(0, 0, 0, 1.0 / 255);
+  CHECK(ctx.explain_constant_source().empty());
+  ctx.color4(0, 0, 0, 0);
+  const std::uint8_t texel[4] = {1, 2, 3, 4};
+  ctx.texImage2D(gl::TEXTURE_2D, 0, gl::RGBA8, 1, 1, 0, gl::RGBA, gl::UNSIGNED_BYTE, texel);
+  ctx.enable(gl::TEXTURE_2D);
+  CHECK(ctx.explain_constant_source().empty());
+  ctx.disable(gl::TEXTURE_2D);
+  ctx.colorMask(false, false, false, false);  // nothing written: nothing to say
+  CHECK(ctx.explain_constant_source().empty());
+}
+
 TEST_CASE("paper antialiased shadows (§4.2 steps 6-21) through write_fragments") {
   Context ctx = make(3, 1);
   // Steps 6-10: alpha := T1 + T2 with FUNC_ADD (ONE, ONE), then T3 - (T1 + T2) with FUNC_SUBTRACT.

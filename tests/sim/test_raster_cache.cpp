@@ -487,3 +487,123 @@ TEST_CASE("raster cache: with threads a batch is keyed by its glEnds' memo seria
   CHECK(c.raster_cache().hits() == 3);
   CHECK(off.raster_cache().hits() + off.raster_cache().misses() == 0);
 }
+
+TEST_CASE("raster cache: a group that can change no buffer is left out, and only such a group") {
+  // Passes over one mesh, each in one colour (glColor once: every vertex the
+  // same codes). Most passes take a colour stage that keeps the destination for
+  // their colour (the paper's GL_DST_ALPHA, GL_ONE with A_s = 0; ONE, ONE with
+  // 0; MIN with 1; MAX with 0; SRC_ALPHA, ONE_MINUS_SRC_ALPHA with A_s = 0),
+  // the others a random one; then, each now and then, what must keep a group
+  // in: one vertex of another colour, a texture, a stencil test that writes (or
+  // one that does not), the depth mask on after a scissored depth clear to 1
+  // (fragments that store), and flat shading. The buffers must be exactly those
+  // of the same calls with the cache off and of the per-fragment reference, on
+  // 1 and 2 threads (docs/performance.md 34.1).
+  std::uint64_t unwritten = 0, reference_unwritten = 0;
+  for (int threads : {1, 2})
+    for (std::uint32_t seed = 80; seed < 92; ++seed) {
+      INFO("threads ", threads, " seed ", seed);
+      Context cached(profile_named("geforce256"), kW, kH), uncached(profile_named("geforce256"), kW, kH),
+          reference(profile_named("geforce256"), kW, kH);
+      uncached.set_raster_cache(false);
+      reference.set_fast_paths(false);
+      for (Context* x : {&cached, &uncached, &reference}) {
+        x->set_threads(threads);
+        SceneRng r(seed);
+        random_clear_and_projection(*x, r, 0.3);
+        ortho_window(*x);
+        const int cx = r.i(8, 20), cy = r.i(6, 14);
+        std::vector<MeshVertex> mesh = jittered_grid(r, cx, cy);
+        for (MeshVertex& v : mesh) {
+          v.x = std::clamp(v.x, 1.0, kW - 1.0);
+          v.y = std::clamp(v.y, 1.0, kH - 1.0);
+        }
+        x->enable(gl::BLEND);
+        x->enable(gl::DEPTH_TEST);
+        x->depthFunc(gl::LEQUAL);
+        x->stencilFunc(gl::ALWAYS, 0, 0xFF);
+        random_texture(*x, r, 0, 1);
+        x->texEnvi(gl::TEXTURE_ENV, gl::TEXTURE_ENV_MODE, gl::REPLACE);
+        x->texParameteri(gl::TEXTURE_2D, gl::TEXTURE_MIN_FILTER, gl::NEAREST);  // (the span path's textures)
+        x->texParameteri(gl::TEXTURE_2D, gl::TEXTURE_MAG_FILTER, gl::NEAREST);
+        x->disable(gl::TEXTURE_2D);
+        struct Keeping {
+          GLenum eq, sf, df;
+          std::array<double, 4> color;  // -1: any code
+          std::array<bool, 4> mask;
+        };
+        static const Keeping kKeeping[] = {
+            {gl::FUNC_ADD, gl::DST_ALPHA, gl::ONE, {0, 0, 0, 0}, {false, false, false, true}},  // the paper's
+            {gl::FUNC_ADD, gl::ONE, gl::ONE, {0, 0, 0, 0}, {true, true, true, true}},
+            {gl::FUNC_REVERSE_SUBTRACT, gl::ONE, gl::ONE, {0, 0, 0, 0}, {true, true, true, true}},
+            {gl::MIN, gl::ONE, gl::ONE, {1, 1, 1, 1}, {true, true, true, true}},
+            {gl::MAX, gl::ONE, gl::ONE, {0, 0, 0, 0}, {true, true, true, true}},
+            {gl::FUNC_ADD, gl::SRC_ALPHA, gl::ONE_MINUS_SRC_ALPHA, {-1, -1, -1, 0}, {true, true, true, true}}};
+        struct Mode {
+          GLenum eq, sf, df;
+        };
+        static const Mode kOthers[] = {{gl::FUNC_SUBTRACT, gl::ONE, gl::ONE},
+                                       {gl::FUNC_ADD, gl::DST_ALPHA, gl::DST_ALPHA},
+                                       {gl::FUNC_ADD, gl::ONE, gl::ONE},
+                                       {gl::FUNC_ADD, gl::ONE, gl::ZERO}};
+        static const double kCodes[] = {0.0, 1.0 / 255, 254.0 / 255, 1.0};
+        for (int pass = 0; pass < 20; ++pass) {
+          std::array<double, 4> color{r.pick(kCodes), r.pick(kCodes), r.pick(kCodes), r.pick(kCodes)};
+          if (pass == 0) {  // colour and depth written
+            x->blendEquation(gl::FUNC_ADD);
+            x->blendFunc(gl::ONE, gl::ZERO);
+          } else if (r.b(70)) {
+            const Keeping& k = r.pick(kKeeping);
+            x->blendEquation(k.eq);
+            x->blendFunc(k.sf, k.df);
+            x->colorMask(k.mask[0], k.mask[1], k.mask[2], k.mask[3]);
+            for (int c = 0; c < 4; ++c)
+              if (k.color[static_cast<std::size_t>(c)] >= 0) color[static_cast<std::size_t>(c)] = k.color[static_cast<std::size_t>(c)];
+          } else {
+            const Mode& m = r.pick(kOthers);
+            x->blendEquation(m.eq);
+            x->blendFunc(m.sf, m.df);
+            x->colorMask(r.b(60), r.b(60), r.b(60), r.b(80));
+          }
+          x->shadeModel(r.b(70) ? gl::SMOOTH : gl::FLAT);
+          x->depthMask(pass == 0 || r.b(70));
+          if (pass > 0 && r.b(20)) {  // a stencil test: writing (INCR) or not (KEEP)
+            x->enable(gl::STENCIL_TEST);
+            x->stencilOp(gl::KEEP, gl::KEEP, r.b(50) ? gl::INCR : gl::KEEP);
+          } else {
+            x->disable(gl::STENCIL_TEST);
+          }
+          if (pass > 0 && r.b(20)) x->enable(gl::TEXTURE_2D);
+          else x->disable(gl::TEXTURE_2D);
+          if (pass > 0 && r.b(20)) {  // far depths under part of the mesh: its fragments there store
+            x->enable(gl::SCISSOR_TEST);
+            x->scissor(r.i(0, kW / 2), r.i(0, kH / 2), kW / 2, kH / 2);
+            x->clearDepth(1);
+            x->clear(gl::DEPTH_BUFFER_BIT);
+            x->disable(gl::SCISSOR_TEST);
+          }
+          const int odd = r.b(20) ? r.i(0, (cx + 1) * 2 - 1) : -1;  // a vertex of another colour in every strip
+          for (int j = 0; j < cy; ++j) {
+            x->begin(gl::TRIANGLE_STRIP);
+            int k = 0;
+            for (int i = 0; i <= cx; ++i)
+              for (int row : {j + 1, j}) {
+                const MeshVertex& v = mesh[static_cast<std::size_t>(row * (cx + 1) + i)];
+                if (k++ == odd) x->color4(0.5, 0.25, 0.75, 0.5);
+                else x->color4(color[0], color[1], color[2], color[3]);
+                x->texCoord2(v.tc0[0], v.tc0[1]);
+                x->vertex3(v.x, v.y, v.z);
+              }
+            x->end();
+          }
+        }
+      }
+      REQUIRE(buffer_hashes(cached) == buffer_hashes(uncached));
+      REQUIRE(buffer_hashes(cached) == buffer_hashes(reference));
+      unwritten += cached.span_group_stats().unwritten;
+      reference_unwritten += reference.span_group_stats().unwritten;
+    }
+  MESSAGE("groups left out: " << unwritten);
+  CHECK(unwritten > 1000);
+  CHECK(reference_unwritten == 0);  // (the per-fragment path writes every fragment)
+}
