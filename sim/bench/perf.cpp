@@ -30,6 +30,11 @@
 #include <thread>
 #include <vector>
 
+#ifdef __linux__
+#include <pthread.h>
+#include <sched.h>
+#endif
+
 #include "pipeline/gl/enums.h"
 #include "sim/bench/accuracy_metrics.h"
 #include "sim/bench/svg_plot.h"
@@ -93,14 +98,15 @@ double copy_bandwidth(std::size_t bytes, int repeats) {
 // virtual machine's neighbours) or slow down together. The speed-up of a trace
 // at n threads is read against it (docs/performance.md 24.3).
 volatile std::uint32_t ceiling_sink = 0;
+void ceiling_work(std::vector<std::uint32_t>& buf) {
+  for (std::uint32_t r = 0; r < 2048; ++r)
+    for (std::uint32_t& x : buf) {
+      x = (x ^ r) * 0x85EBCA6Bu;
+      x ^= x >> 13;
+    }
+}
 double parallel_ceiling(int n, int repeats) {
-  auto work = [](std::vector<std::uint32_t>& buf) {
-    for (std::uint32_t r = 0; r < 2048; ++r)
-      for (std::uint32_t& x : buf) {
-        x = (x ^ r) * 0x85EBCA6Bu;
-        x ^= x >> 13;
-      }
-  };
+  const auto work = ceiling_work;
   std::vector<std::vector<std::uint32_t>> bufs(static_cast<std::size_t>(n), std::vector<std::uint32_t>(65536, 1));
   auto timed = [&](int threads) {
     double best = 1e300;
@@ -118,6 +124,58 @@ double parallel_ceiling(int n, int repeats) {
   for (const auto& b : bufs) ceiling_sink = ceiling_sink ^ b[12345];  // the buffers are read: the loops must run
   return all > 0 ? n * one / all : 0;
 }
+
+}  // namespace
+
+std::vector<CpuSpeed> cpu_speeds(int repeats) {
+  std::vector<CpuSpeed> speeds;
+#ifdef __linux__
+  cpu_set_t allowed;
+  CPU_ZERO(&allowed);
+  if (sched_getaffinity(0, sizeof allowed, &allowed) != 0) return speeds;
+  for (int cpu = 0; cpu < 64 && cpu < CPU_SETSIZE; ++cpu) {
+    if (!CPU_ISSET(cpu, &allowed)) continue;
+    double best = 0;
+    bool pinned = false;
+    std::thread t([&] {  // (a thread of its own: the caller's affinity stays as it was)
+      cpu_set_t one;
+      CPU_ZERO(&one);
+      CPU_SET(cpu, &one);
+      if (pthread_setaffinity_np(pthread_self(), sizeof one, &one) != 0) return;
+      pinned = true;
+      std::vector<std::uint32_t> buf(65536, 1);
+      best = 1e300;
+      for (int r = 0; r < repeats; ++r) {
+        const auto t0 = Clock::now();
+        ceiling_work(buf);
+        best = std::min(best, seconds_since(t0));
+      }
+      ceiling_sink = ceiling_sink ^ buf[12345];
+    });
+    t.join();
+    if (!pinned) return {};
+    speeds.push_back({cpu, best});
+  }
+#else
+  (void)repeats;
+#endif
+  return speeds;
+}
+
+std::string describe_cpu_speeds(const std::vector<CpuSpeed>& speeds) {
+  if (speeds.empty()) return "not measured";
+  std::string s = speeds.size() == 1 ? "one CPU: " : "";
+  double lo = speeds.front().seconds, hi = lo;
+  for (std::size_t i = 0; i < speeds.size(); ++i) {
+    s += (i ? ", cpu" : "cpu") + std::to_string(speeds[i].cpu) + " " + fixed(speeds[i].seconds * 1e3, 2) + " ms";
+    lo = std::min(lo, speeds[i].seconds);
+    hi = std::max(hi, speeds[i].seconds);
+  }
+  if (speeds.size() > 1 && hi > 0) s += " (slowest " + fixed(lo / hi, 2) + " of the fastest)";
+  return s;
+}
+
+namespace {
 
 // The speed-up the split part of a frame can have on this machine: its ceiling
 // for `threads` threads, taken in [1, threads] (machine_bound).
@@ -410,7 +468,9 @@ int time_one_trace(const Options& o, std::ostream& out, std::ostream& err) {
     out << o.trace_file << ": " << prog.width << "x" << prog.height << ", " << prog.pass_count() << " passes, "
         << fragments << " fragments; median " << fixed(t.median * 1e3, 3) << " ms (" << fixed(t.min * 1e3, 3) << " .. "
         << fixed(t.max * 1e3, 3) << "), " << fixed(1 / t.median, 1) << " frames/s, "
-        << fixed(static_cast<double>(fragments) / t.median / 1e6, 1) << " Mfragments/s\n";
+        << fixed(static_cast<double>(fragments) / t.median / 1e6, 1) << " Mfragments/s\n"
+        << "each CPU alone after these frames (a cache-resident loop on one pinned thread): " << describe_cpu_speeds(cpu_speeds(3))
+        << "\n";
     if (threads > 1)
       out << "serial part (this thread outside the pool's runs): median " << fixed(spread(serial).median * 1e3, 3)
           << " ms of each frame; with one thread's frame time T1 the speed-up is at most T1 / (serial + (T1 - serial) / "
@@ -497,10 +557,14 @@ int run_perf(const std::vector<std::string>& args, std::ostream& out, std::ostre
   std::vector<TraceRow> rows, thread_rows;
   try {
     const double bw = copy_bandwidth(std::size_t{o.quick ? 32u : 128u} << 20, 7);
-    out << "copy bandwidth (read + write): " << fixed(bw / 1e9, 2) << " GB/s; hardware threads: " << hw << "\n\n";
+    const std::string cpus = describe_cpu_speeds(cpu_speeds(3));
+    out << "copy bandwidth (read + write): " << fixed(bw / 1e9, 2) << " GB/s; hardware threads: " << hw << "\n"
+        << "each CPU alone (a cache-resident loop on one pinned thread): " << cpus << "\n\n";
     md << "# Throughput (`ffsim bench --perf" << (o.quick ? " --quick" : "") << "`)\n\n"
        << "Copy bandwidth (memcpy, bytes read + written): " << fixed(bw / 1e9, 2) << " GB/s; hardware threads: " << hw
-       << ". Median of " << o.repeat << " runs after a warm-up (min .. max in the CSV files).\n\n";
+       << ". Each CPU alone (the parallel ceiling's loop on one thread pinned there, best of 3): " << cpus
+       << "; one-thread rows run on whichever CPU the system gives them (docs/performance.md 34.2). Median of "
+       << o.repeat << " runs after a warm-up (min .. max in the CSV files).\n\n";
 
     if (o.stages) {
       const int w = o.stage_size ? o.stage_size : o.quick ? 256 : 1024;

@@ -32,4 +32,20 @@ double amdahl_bound(double one_thread_s, double serial_s, int threads);
 // for nonsense, and for a ceiling that is not a positive number.
 double machine_bound(double one_thread_s, double serial_s, int threads, double ceiling);
 
+// This machine's CPUs one at a time: for each CPU the process may run on (its
+// affinity mask, at most 64 CPUs), the seconds a thread pinned there takes for
+// the parallel ceiling's loop (a 256 KB buffer, no shared data), best of
+// `repeats`; in CPU order. The CPUs of a virtual machine need not run at one
+// speed: one vCPU's host core may be shared with a neighbour, and which CPU a
+// one-thread frame runs on then sets its time (docs/performance.md 34.2).
+// Empty where the affinity mask cannot be read or set (not Linux).
+struct CpuSpeed {
+  int cpu = 0;
+  double seconds = 0;
+};
+std::vector<CpuSpeed> cpu_speeds(int repeats);
+// One line for the table: "cpu0 12.34 ms, cpu1 8.01 ms (slowest 0.65 of the
+// fastest)", or "one CPU: cpu0 8.01 ms", or "not measured".
+std::string describe_cpu_speeds(const std::vector<CpuSpeed>& speeds);
+
 }  // namespace ffsim::bench

@@ -5,11 +5,15 @@
 // Timings are never checked (benchmarks, not timed tests).
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <unistd.h>
+#ifdef __linux__
+#include <sched.h>
+#endif
 
 #include "cli_test_util.h"
 #include "sim/bench/perf.h"
@@ -106,6 +110,7 @@ TEST_CASE("bench --perf --trace: one thread prints the frame; two also the seria
   CHECK(one.out.find(" frames/s, ") != std::string::npos);
   CHECK(one.out.find("serial part") == std::string::npos);
   CHECK(one.out.find("parallel ceiling") == std::string::npos);
+  CHECK(one.out.find("each CPU alone after these frames (a cache-resident loop on one pinned thread): cpu") != std::string::npos);
   std::vector<std::string> args = base;
   args.insert(args.end(), {"--threads", "2"});
   const Run two = run(args);
@@ -222,4 +227,29 @@ TEST_CASE("bench --perf: Amdahl's bound, hand-derived values") {
   CHECK(amdahl_bound(4e-3, -1, 2) == 0);
   CHECK(amdahl_bound(4e-3, 1e-3, 0) == 0);
   CHECK(amdahl_bound(std::nan(""), 1e-3, 2) == 0);
+}
+
+TEST_CASE("bench --perf: each CPU's speed alone, one entry per CPU of the affinity mask, and its line") {
+  const std::vector<bench::CpuSpeed> speeds = bench::cpu_speeds(1);
+#ifdef __linux__
+  cpu_set_t allowed;
+  CPU_ZERO(&allowed);
+  REQUIRE(sched_getaffinity(0, sizeof allowed, &allowed) == 0);
+  REQUIRE(static_cast<int>(speeds.size()) == std::min(CPU_COUNT(&allowed), 64));
+  for (std::size_t i = 0; i < speeds.size(); ++i) {
+    CHECK(CPU_ISSET(speeds[i].cpu, &allowed));
+    if (i) CHECK(speeds[i].cpu > speeds[i - 1].cpu);
+    CHECK(speeds[i].seconds > 0);
+    CHECK(speeds[i].seconds < 10);
+  }
+  // The caller's own mask is left as it was.
+  cpu_set_t after;
+  CPU_ZERO(&after);
+  REQUIRE(sched_getaffinity(0, sizeof after, &after) == 0);
+  CHECK(CPU_EQUAL(&allowed, &after));
+#endif
+  // The line, on hand-made numbers.
+  CHECK(bench::describe_cpu_speeds({}) == "not measured");
+  CHECK(bench::describe_cpu_speeds({{3, 0.008}}) == "one CPU: cpu3 8.00 ms");
+  CHECK(bench::describe_cpu_speeds({{0, 0.012}, {1, 0.006}}) == "cpu0 12.00 ms, cpu1 6.00 ms (slowest 0.50 of the fastest)");
 }
