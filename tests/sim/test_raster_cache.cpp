@@ -45,6 +45,18 @@ std::vector<MeshVertex> jittered_grid(SceneRng& r, int cx, int cy) {
   return g;
 }
 
+// jittered_grid with every vertex moved inside the window (at least one pixel
+// from its edges): with an orthographic window projection, every vertex is
+// inside the view volume.
+std::vector<MeshVertex> jittered_grid_inside(SceneRng& r, int cx, int cy) {
+  std::vector<MeshVertex> mesh = jittered_grid(r, cx, cy);
+  for (MeshVertex& v : mesh) {
+    v.x = std::clamp(v.x, 1.0, kW - 1.0);
+    v.y = std::clamp(v.y, 1.0, kH - 1.0);
+  }
+  return mesh;
+}
+
 // `passes` passes over the same geometry: a grid of small cells as triangle
 // strips (one glEnd per row), a grid of large cells as GL_TRIANGLES (runs of 64
 // fragments and more), each pass with new textures, combiners, fragment
@@ -226,11 +238,7 @@ TEST_CASE("raster cache: a replay takes the recorded texture coordinates only wh
         random_clear_and_projection(*x, r, 0.3);
         ortho_window(*x);  // every vertex inside the view volume (one thread draws shared vertices by the cache)
         const int cx = r.i(8, 20), cy = r.i(6, 14);
-        std::vector<MeshVertex> mesh = jittered_grid(r, cx, cy);
-        for (MeshVertex& v : mesh) {
-          v.x = std::clamp(v.x, 1.0, kW - 1.0);
-          v.y = std::clamp(v.y, 1.0, kH - 1.0);
-        }
+        const std::vector<MeshVertex> mesh = jittered_grid_inside(r, cx, cy);
         for (int u = 0; u < 2; ++u) {
           random_texture(*x, r, u, static_cast<std::uint32_t>(1 + u));
           for (GLenum f : {gl::TEXTURE_MIN_FILTER, gl::TEXTURE_MAG_FILTER}) x->texParameteri(gl::TEXTURE_2D, f, gl::LINEAR);
@@ -302,11 +310,7 @@ TEST_CASE("raster cache: a replay reuses the depth test's comparisons only while
         random_clear_and_projection(*x, r, 0.3);
         ortho_window(*x);  // every vertex inside the view volume
         const int cx = r.i(8, 20), cy = r.i(6, 14);
-        std::vector<MeshVertex> mesh = jittered_grid(r, cx, cy);
-        for (MeshVertex& v : mesh) {
-          v.x = std::clamp(v.x, 1.0, kW - 1.0);
-          v.y = std::clamp(v.y, 1.0, kH - 1.0);
-        }
+        const std::vector<MeshVertex> mesh = jittered_grid_inside(r, cx, cy);
         x->enable(gl::BLEND);
         x->blendFunc(gl::ONE, gl::ONE);
         x->enable(gl::DEPTH_TEST);
@@ -513,11 +517,7 @@ TEST_CASE("raster cache: a group that can change no buffer is left out, and only
         random_clear_and_projection(*x, r, 0.3);
         ortho_window(*x);
         const int cx = r.i(8, 20), cy = r.i(6, 14);
-        std::vector<MeshVertex> mesh = jittered_grid(r, cx, cy);
-        for (MeshVertex& v : mesh) {
-          v.x = std::clamp(v.x, 1.0, kW - 1.0);
-          v.y = std::clamp(v.y, 1.0, kH - 1.0);
-        }
+        const std::vector<MeshVertex> mesh = jittered_grid_inside(r, cx, cy);
         x->enable(gl::BLEND);
         x->enable(gl::DEPTH_TEST);
         x->depthFunc(gl::LEQUAL);
