@@ -98,6 +98,7 @@ double copy_bandwidth(std::size_t bytes, int repeats) {
 // virtual machine's neighbours) or slow down together. The speed-up of a trace
 // at n threads is read against it (docs/performance.md 24.3).
 volatile std::uint32_t ceiling_sink = 0;
+// The loop itself (also cpu_speeds'): multiply-xorshift over the buffer, 2048 times.
 void ceiling_work(std::vector<std::uint32_t>& buf) {
   for (std::uint32_t r = 0; r < 2048; ++r)
     for (std::uint32_t& x : buf) {
@@ -106,15 +107,14 @@ void ceiling_work(std::vector<std::uint32_t>& buf) {
     }
 }
 double parallel_ceiling(int n, int repeats) {
-  const auto work = ceiling_work;
   std::vector<std::vector<std::uint32_t>> bufs(static_cast<std::size_t>(n), std::vector<std::uint32_t>(65536, 1));
   auto timed = [&](int threads) {
     double best = 1e300;
     for (int r = 0; r < repeats; ++r) {
       const auto t0 = Clock::now();
       std::vector<std::thread> others;
-      for (int k = 1; k < threads; ++k) others.emplace_back(work, std::ref(bufs[static_cast<std::size_t>(k)]));
-      work(bufs[0]);
+      for (int k = 1; k < threads; ++k) others.emplace_back(ceiling_work, std::ref(bufs[static_cast<std::size_t>(k)]));
+      ceiling_work(bufs[0]);
       for (std::thread& t : others) t.join();
       best = std::min(best, seconds_since(t0));
     }
