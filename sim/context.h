@@ -465,6 +465,7 @@ class Context {
   // one's window positions and depth codes (span path, every vertex inside the
   // view volume; on by default). Off: every glEnd transforms its vertices.
   void set_geometry_memo(bool on) {
+    settle_window_fills();  // (before an entry they read goes)
     geometry_memo_on_ = on;
     if (!on) geometry_memo_.clear();
   }
@@ -481,6 +482,7 @@ class Context {
   void set_vertex_run_memo(bool on) {
     vertex_run_memo_on_ = on;
     copy_pending_run();  // (before its record goes)
+    settle_window_fills();  // (likewise)
     if (!on) vertex_run_memo_.clear();
   }
   const VertexRunMemo& vertex_run_memo() const { return vertex_run_memo_; }
@@ -501,6 +503,13 @@ class Context {
   // Deferred glEnds that reused the pending batch's shading state, plan and
   // set-up instead of making them again (Context::end; docs/performance.md 33).
   std::uint64_t deferred_setup_reuses() const { return deferred_setup_reuses_; }
+  // glEnds whose window vertices were left to the batch's flush, which fills
+  // them over the pool (WindowFill; docs/performance.md 35).
+  std::uint64_t deferred_window_fills() const { return deferred_window_fills_; }
+  // Flushes that filled them over the pool, and memo changes that had them
+  // filled first on this thread (settle_window_fills).
+  std::uint64_t split_window_fills() const { return split_window_fills_; }
+  std::uint64_t settled_window_fills() const { return settled_window_fills_; }
   // Pixel rectangles (CopyPixels) whose rows went through the fragment
   // operations in bands on the pool (docs/performance.md 19.6).
   std::uint64_t split_pixel_rects() const { return split_pixel_rects_; }
@@ -701,8 +710,30 @@ class Context {
   // window_attributes of n vertices (a glEnd's shared vertices): the colour
   // format checked once, not per vertex. `fill`: c is a replayed run's record,
   // whose vertices hold fill's values where the run does not write them.
+  // `memo`: the two colour conversions kept (null: color_memo_; a pool task
+  // passes its own).
+  struct ColorMemo;
   void window_attributes_n(const ClipVertex* c, const double* iw, std::size_t n, const DrawSetup& ds,
-                           WindowVertex* w, const VertexRunFill* fill = nullptr) const;
+                           WindowVertex* w, const VertexRunFill* fill = nullptr, ColorMemo* memo = nullptr) const;
+  // The window vertices [i0, i1) of a glEnd whose geometry memo entry `geo` has
+  // its positions: the entry's snapped positions and depth codes, and the
+  // attributes of the vertices c (fill: a replayed run's record) into w.
+  void memo_window_vertices(const GeometryEntry& geo, const ClipVertex* c, const VertexRunFill* fill, std::size_t i0,
+                            std::size_t i1, const DrawSetup& ds, WindowVertex* w, ColorMemo* memo = nullptr) const;
+  // Threads: the batch's window vertices left to fill (a replayed run's glEnd
+  // whose memo entry gave its triangles: nothing reads them before the flush),
+  // filled by flush_batch over the pool before the bands (docs/performance.md 35).
+  struct WindowFill {
+    std::size_t base = 0, n = 0;       // batch_vertices_[base, base + n)
+    const GeometryEntry* geo = nullptr;  // (settle_window_fills before the memo may drop it)
+    VertexRunFill fill;                  // (fill.pending: the record, likewise)
+  };
+  // Fills them all: over the pool when `split` and there are enough, else here.
+  void run_window_fills(const DrawSetup& ds, bool split);
+  // Fills them here, now: before the geometry or vertex-run memo inserts or
+  // clears (which may drop an entry or record a fill reads). They belong to the
+  // pending batch, whose set-up is deferred_ds_.
+  void settle_window_fills();
   // The rows [y0, y1) (relative to the viewport corner) of one triangle, shaded
   // into `span` and written; `band` >= 0: on a worker, into that band's scratch
   // and counters (write_fragments without its plan update and probe).
@@ -820,7 +851,8 @@ class Context {
   std::uint64_t split_pixel_rects_ = 0;
   std::uint64_t split_uploads_ = 0;
   std::uint64_t split_clears_ = 0;
-  std::uint64_t one_point_draws_ = 0, deferred_setup_reuses_ = 0;
+  std::uint64_t one_point_draws_ = 0, deferred_setup_reuses_ = 0, deferred_window_fills_ = 0, split_window_fills_ = 0,
+                settled_window_fills_ = 0;
   std::chrono::steady_clock::duration pool_time_{0};  // pool_seconds()
   // Scratch of the span path, reused from run to run (sim/draw_span.cpp).
   // (alignas(64): the bands' scratch never share a cache line, so two threads'
@@ -888,6 +920,7 @@ class Context {
   // window) sum to at least split_fragments_ pixels is split into bands of rows.
   std::int64_t split_fragments_ = kSplitFragments;
   static constexpr std::size_t kBatchTriangles = 2048;  // bounds the batch's memory
+  static constexpr std::size_t kSplitWindowFill = 1024;  // fewer window fills are made on the caller (performance.md 35)
   // The span path shades a run of this many fragments or more on its own, not in
   // a group (sim/draw.cpp raster_triangle).
   static constexpr int kLongRun = 64;
@@ -914,6 +947,7 @@ class Context {
   // without a serial (the key then holds every triangle's positions).
   std::vector<std::uint64_t> batch_geometry_;
   bool batch_unkeyed_ = false;
+  std::vector<WindowFill> window_fills_;  // (WindowFill, above)
   int batch_r0_ = 0, batch_r1_ = 0;
   std::int64_t batch_area_ = 0;
   // A run shaded at once into `span` (fixed profiles); false when the run needs

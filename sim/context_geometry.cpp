@@ -149,29 +149,21 @@ void Context::end() {
   std::uint64_t geometry = 0;  // the memo's serial of this glEnd's window positions
   FragmentSpan shared_span;
   sequence_scratch_.clear();
+  WindowVertices* shared_wv = nullptr;  // where the shared window vertices go
   if (shared) {
     ++shared_vertex_draws_;
-    WindowVertices& wv = ds.bands ? batch_vertices_ : window_scratch_;
+    WindowVertices& wv = *(shared_wv = ds.bands ? &batch_vertices_ : &window_scratch_);
     if (!ds.bands) wv.clear();
     shared_base = wv.size();
     wv.resize(shared_base + n);
     WindowVertex* w = wv.data() + shared_base;
-    if (geo) {
-      for (std::size_t i = 0; i < n; ++i) {
-        w[i].p = geo->p[i];
-        w[i].depth = ds.has_depth ? geo->depth[i] : 0;
-      }
-      if (fill.pending) {  // the record and the fills: the vertices are never copied
-        ++run_record_reads_;
-        window_attributes_n(object, geo->iw.data(), n, ds, w, &fill);
-      } else {
-        window_attributes_n(v.data(), geo->iw.data(), n, ds, w);
-      }
+    if (geo) {  // (its window vertices filled below, or by the batch's flush)
       geometry = geo->serial;
       entry = geo;
     } else if (!memo) {
       for (std::size_t i = 0; i < n; ++i) window_vertex(v[i], ds, w[i]);
     } else {  // window_vertex's two halves, keeping 1/w_c and the position half in the memo
+      settle_window_fills();  // (the insertion may drop an entry or record they read)
       GeometryEntry& e = geometry_memo_.insert(gkey, n, positions_hash, [this](std::size_t i) -> const glm::dvec4& { return object_scratch_[i]; });
       e.iw.resize(n);
       e.p.resize(n);
@@ -223,6 +215,19 @@ void Context::end() {
   BatchMemo* batch_memo = shared && ds.bands && entry ? &entry->batch : nullptr;
   const bool from_memo = batch_memo && batch_memo->valid && batch_memo->cx0 == ds.cx0 && batch_memo->cy0 == ds.cy0 &&
                          batch_memo->cx1 == ds.cx1 && batch_memo->cy1 == ds.cy1;
+  if (geo) {  // the entry's positions and depth codes, and the attributes
+    if (fill.pending) ++run_record_reads_;  // (the record and the fills: the vertices are never copied)
+    if (from_memo && fill.pending) {
+      // Its triangles come from the memo and the record outlives the batch (no
+      // memo changes before settle_window_fills): nothing reads these vertices
+      // before the flush, which fills them over the pool (performance.md 35).
+      window_fills_.push_back({shared_base, n, geo, fill});
+      ++deferred_window_fills_;
+    } else {
+      WindowVertex* w = shared_wv->data() + shared_base;
+      memo_window_vertices(*geo, fill.pending ? object : v.data(), fill.pending ? &fill : nullptr, 0, n, ds, w);
+    }
+  }
   if (from_memo) {
     ++batch_memo_uses_;
     const auto base = static_cast<std::uint32_t>(shared_base);

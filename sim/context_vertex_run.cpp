@@ -99,6 +99,7 @@ void Context::vertex_run_record(std::uint64_t id) {
   vertex_run_start_.id = 0;
   const std::size_t first = vertex_run_start_.first;
   const std::size_t n = in_begin_ ? begin_count_ - first : 0;
+  settle_window_fills();  // (the insertion may drop a record they read)
   VertexRunMemo::Record& r = vertex_run_memo_.insert(id, begin_vertices_.data() + first, n);
   r.in_begin = in_begin_;
   r.entry = vertex_run_start_.entry;

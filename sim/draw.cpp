@@ -14,6 +14,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <span>
 #include <utility>
 
 #include "pipeline/combiners/register_combiners.h"
@@ -266,14 +267,15 @@ void Context::window_attributes(const ClipVertex& c, double iw, const DrawSetup&
 }
 
 void Context::window_attributes_n(const ClipVertex* c, const double* iw, std::size_t n, const DrawSetup& ds,
-                                  WindowVertex* w, const VertexRunFill* fill) const {
+                                  WindowVertex* w, const VertexRunFill* fill, ColorMemo* memo) const {
   // Vertex colours into the fragment colour format (§1.2 codes, or binary32/64).
   // A colour equal bit for bit to the previous vertex's (in the same format)
   // converts to the same codes: with the fast paths, the last conversion of each
   // is kept (a memo of another format is dropped, once for the n vertices);
   // without, every vertex converts (the reference the tests compare with).
   const ColorFormat& f = ds.st->color;
-  for (ColorMemo& m : color_memo_)
+  ColorMemo* const kept = memo ? memo : color_memo_.data();
+  for (ColorMemo& m : std::span<ColorMemo>(kept, 2))
     if (!fast_paths_ || m.format.arith != f.arith || m.format.bits != f.bits) m.valid = false;
   auto convert = [&](const std::array<double, 4>& v, ColorMemo& m) -> const Rgba& {
     if (!m.valid || std::memcmp(m.in.data(), v.data(), sizeof(double) * 4) != 0)
@@ -285,8 +287,8 @@ void Context::window_attributes_n(const ClipVertex* c, const double* iw, std::si
   const std::array<double, 4>* secondary = fill && !(fill->written & kAttribSecondary) ? &fill->secondary : nullptr;
   // A filled colour is one value for all n vertices: converted once (the memo
   // would return the same codes for each).
-  const Rgba* const color_once = color ? &convert(*color, color_memo_[0]) : nullptr;
-  const Rgba* const secondary_once = secondary ? &convert(*secondary, color_memo_[1]) : nullptr;
+  const Rgba* const color_once = color ? &convert(*color, kept[0]) : nullptr;
+  const Rgba* const secondary_once = secondary ? &convert(*secondary, kept[1]) : nullptr;
   // s/w, t/w, q/w only for the units the plan samples: every reader of tcw reads
   // a sampled unit's (texture_coordinates, coords_reuse_mask, the recorded
   // groups, the per-fragment path), and a glEnd's window vertices are drawn
@@ -301,8 +303,8 @@ void Context::window_attributes_n(const ClipVertex* c, const double* iw, std::si
   }
   for (std::size_t i = 0; i < n; ++i) {
     const ClipVertex& v = c[i];
-    const Rgba &pc = color_once ? *color_once : convert(v.color, color_memo_[0]),
-               &sc = secondary_once ? *secondary_once : convert(v.secondary, color_memo_[1]);
+    const Rgba &pc = color_once ? *color_once : convert(v.color, kept[0]),
+               &sc = secondary_once ? *secondary_once : convert(v.secondary, kept[1]);
     WindowVertex& o = w[i];
     o.color_code = pc.code;
     o.secondary_code = sc.code;
@@ -314,6 +316,61 @@ void Context::window_attributes_n(const ClipVertex* c, const double* iw, std::si
       o.tcw[u] = {t.x * iw[i], t.y * iw[i], t.w * iw[i]};
     }
   }
+}
+
+void Context::memo_window_vertices(const GeometryEntry& geo, const ClipVertex* c, const VertexRunFill* fill,
+                                   std::size_t i0, std::size_t i1, const DrawSetup& ds, WindowVertex* w,
+                                   ColorMemo* memo) const {
+  for (std::size_t i = i0; i < i1; ++i) {
+    w[i].p = geo.p[i];
+    w[i].depth = ds.has_depth ? geo.depth[i] : 0;
+  }
+  window_attributes_n(c + i0, geo.iw.data() + i0, i1 - i0, ds, w + i0, fill, memo);
+}
+
+void Context::run_window_fills(const DrawSetup& ds, bool split) {
+  if (window_fills_.empty()) return;
+  struct Done {  // (emptied however this ends)
+    std::vector<WindowFill>& f;
+    ~Done() { f.clear(); }
+  } done{window_fills_};
+  std::size_t total = 0;
+  for (const WindowFill& f : window_fills_) total += f.n;
+  // The vertices [v0, v1) of the fills laid end to end, each a pure function
+  // of its own inputs (the colour memo only caches): any cut gives the same
+  // bits. One task per thread; a few thousand vertices are not worth a run.
+  auto fill_range = [&](std::size_t v0, std::size_t v1, ColorMemo* memo) {
+    std::size_t at = 0;
+    for (const WindowFill& f : window_fills_) {
+      const std::size_t i0 = std::max(v0, at) - at, i1 = std::min(v1, at + f.n);
+      if (i1 > at && i0 < f.n)
+        memo_window_vertices(*f.geo, f.fill.pending->vertices.data(), &f.fill, i0, i1 - at, ds,
+                             batch_vertices_.data() + f.base, memo);
+      at += f.n;
+      if (at >= v1) break;
+    }
+  };
+  if (!split || threads_ < 2 || total < kSplitWindowFill) {
+    fill_range(0, total, nullptr);
+    return;
+  }
+  ++split_window_fills_;
+  const int tasks = threads_;
+  run_split(tasks, [&](int k) {
+    std::array<ColorMemo, 2> memo{};  // (this task's own: color_memo_ is the caller's)
+    fill_range(total * static_cast<std::size_t>(k) / static_cast<std::size_t>(tasks),
+               total * static_cast<std::size_t>(k + 1) / static_cast<std::size_t>(tasks), memo.data());
+  });
+}
+
+void Context::settle_window_fills() {
+  if (window_fills_.empty()) return;
+  if (!batch_pending_) {  // (a deferred batch that got no triangle: nothing reads them; its next glEnd clears it)
+    window_fills_.clear();
+    return;
+  }
+  ++settled_window_fills_;
+  run_window_fills(deferred_ds_, false);
 }
 
 void Context::count_written(int band, std::uint64_t fragments, std::uint64_t fast_runs) {
@@ -773,6 +830,7 @@ void Context::clear_batch() {
   batch_area_ = 0;
   batch_geometry_.clear();
   batch_unkeyed_ = false;
+  window_fills_.clear();
 }
 
 void Context::batch_polygon(std::vector<ClipVertex>& poly, std::size_t provoking, const DrawSetup& ds) {
@@ -853,7 +911,9 @@ void Context::flush_batch(const DrawSetup& ds) {
   // at least one row each.
   const int rows = batch_r1_ - batch_r0_;
   const int bands = std::min(4 * threads_, rows);
-  if (batch_area_ < split_fragments_ || bands < 2) {  // not worth the pool: in order on this thread
+  const bool split = batch_area_ >= split_fragments_ && bands >= 2;
+  run_window_fills(ds, split);  // (before anything reads the vertices: the key, the bands)
+  if (!split) {  // not worth the pool: in order on this thread
     FragmentSpan span;
     sequence_scratch_.clear();
     for (const BatchTriangle& t : batch_triangles_) sequence_scratch_.push_back(tri(t));

@@ -1,0 +1,179 @@
+// A deferred glEnd's window vertices filled by the batch's flush (Context::
+// WindowFill, docs/performance.md 35): with threads and deferred draws, a glEnd
+// whose vertices are a replayed run's record and whose geometry memo entry gives
+// its window positions and batch triangles leaves its window vertices to the
+// flush, which fills them over the pool. Checked here: traces of strips drawn
+// again (replayed runs) whose buffers and hashes must equal one thread's and the
+// per-fragment path's, the fills over the pool and on the caller both taken, and
+// the memos changing while fills are pending (a run recorded again replaces the
+// record a pending fill reads: the fills are made first).
+#include <doctest/doctest.h>
+
+#include <sstream>
+#include <string>
+
+#include "fast_scene.h"
+#include "sim/trace/executor.h"
+#include "sim/trace/trace.h"
+
+using namespace ffsim;
+using namespace ffsim::test;
+using namespace ffsim::trace;
+
+namespace {
+
+struct Outcome {
+  RunResult result;
+  std::uint64_t fills = 0, pooled = 0, settled = 0, splits = 0, replays = 0, recordings = 0;
+};
+
+// mode 0: fast paths, 1: per-fragment path. split: the Context's split_fragments.
+Outcome run(const Program& p, int threads, int mode, int split) {
+  Context c(p.profile, p.width, p.height);
+  if (mode == 1) c.set_fast_paths(false);
+  c.set_split_fragments(split);
+  RunOptions ro;
+  ro.threads = threads;
+  std::ostringstream out;
+  Outcome o;
+  o.result = run_program_on(c, p, ro, out);
+  o.fills = c.deferred_window_fills();
+  o.pooled = c.split_window_fills();
+  o.settled = c.settled_window_fills();
+  o.splits = c.split_batches();
+  o.replays = c.vertex_run_memo().hits();
+  o.recordings = c.vertex_run_memo().misses();
+  return o;
+}
+
+void check_same(const Outcome& a, const Outcome& b) {
+  REQUIRE(a.result.ok);
+  REQUIRE(b.result.ok);
+  REQUIRE(a.result.hashes.size() == b.result.hashes.size());
+  for (std::size_t k = 0; k < a.result.hashes.size(); ++k) {
+    INFO("hash step at ", a.result.hashes[k].where.str());
+    CHECK(a.result.hashes[k].hex == b.result.hashes[k].hex);
+  }
+  CHECK(a.result.final_hashes == b.result.final_hashes);
+  CHECK(a.result.gl_errors == b.result.gl_errors);
+}
+
+// `strips` triangle strips of `len` vertices over a 96x64 window, each vertex
+// with its own unit-0 (and, with two units, unit-1) coordinates, drawn in
+// `passes` passes with additive blending. Between strips of a pass the current
+// colour may change (vertex data: the pass stays one deferred batch); a strip's
+// run reads it first, so a strip whose colour differs from its recording's is
+// called and recorded again, replacing the record an earlier strip of the same
+// pass may be waiting on.
+std::string strips_trace(const std::string& profile, std::uint32_t seed, int strips, int len, int passes) {
+  SceneRng r(seed);
+  const int units = profile_named(profile.c_str()).texture_units >= 2 && r.b(50) ? 2 : 1;
+  std::string t = "ffsim-trace 1\nprofile " + profile +
+                  "\nframebuffer 96 64\n"
+                  "glMatrixMode GL_PROJECTION\nglOrtho 0 96 0 64 -1 1\nglMatrixMode GL_MODELVIEW\n"
+                  "table tex 4 x 1-x 0.25+0.5*x 1\n";
+  for (int u = units - 1; u >= 0; --u) {
+    t += "glActiveTexture GL_TEXTURE" + std::to_string(u) + "\nglBindTexture GL_TEXTURE_2D " + std::to_string(u + 1) +
+         "\nglTexImage2D GL_TEXTURE_2D 0 GL_RGBA 4 1 0 GL_RGBA GL_FLOAT tex\n"
+         "glTexParameteri GL_TEXTURE_2D GL_TEXTURE_MIN_FILTER GL_NEAREST\n"
+         "glTexParameteri GL_TEXTURE_2D GL_TEXTURE_MAG_FILTER GL_LINEAR\nglEnable GL_TEXTURE_2D\n";
+  }
+  t += "glEnable GL_BLEND\nglBlendFunc GL_ONE GL_ONE\n";
+  // Each strip's calls, the same text in every pass (one run class).
+  std::vector<std::string> calls(static_cast<std::size_t>(strips));
+  for (int s = 0; s < strips; ++s) {
+    std::string& c = calls[static_cast<std::size_t>(s)];
+    const double y0 = r.d(-4, 56), h = r.d(2, 10), x0 = r.d(-8, 8), x1 = r.d(80, 104);
+    for (int i = 0; i < len; ++i) {  // each vertex, then the next one's coordinates
+      const double x = x0 + (x1 - x0) * (i / 2) / (len / 2), y = y0 + (i % 2) * h + r.d(-0.5, 0.5);
+      c += "glVertex2d " + std::to_string(x) + " " + std::to_string(y) + "\n";
+      for (int u = 0; u < units; ++u)
+        c += "glMultiTexCoord2d GL_TEXTURE" + std::to_string(u) + " " + std::to_string(r.d(-1, 2)) + " " +
+             std::to_string(r.d(-1, 2)) + "\n";
+    }
+  }
+  const std::string colours[] = {"0.125 0.25 0.0625 0.5", "0.0625 0.125 0.25 1", "0.25 0 0.125 0.75"};
+  // A strip: the first vertex's coordinates (set before glBegin, read first by
+  // the strip's run, so compared by its replay), then the run.
+  auto strip = [&](int s, const char* first) {
+    std::string d;
+    for (int u = 0; u < units; ++u) d += "glMultiTexCoord2d GL_TEXTURE" + std::to_string(u) + " " + first + "\n";
+    return d + "glBegin GL_TRIANGLE_STRIP\n" + calls[static_cast<std::size_t>(s)] + "glEnd\n";
+  };
+  for (int pass = 0; pass < passes; ++pass) {
+    t += "glColor4d " + colours[0] + "\n";
+    for (int s = 0; s < strips; ++s) {
+      // From the second pass on, sometimes another colour (filled, not
+      // compared: the run still replays), and sometimes other first
+      // coordinates: the replay fails, the run is called and recorded again,
+      // replacing the record that an earlier glEnd's pending fill may read.
+      if (pass > 0 && r.b(25)) t += "glColor4d " + colours[r.i(0, 2)] + "\n";
+      const bool other = pass > 0 && r.b(30);
+      t += strip(s, other ? "0.75 0.125" : "0.25 0.5");
+      // Sometimes the same strip again right away (its run replayed again): the
+      // second glEnd reads the record the first one's pending fill reads.
+      if (pass > 0 && r.b(20)) t += strip(s, other ? "0.75 0.125" : "0.25 0.5");
+    }
+    t += "hash color\n";
+  }
+  return t;
+}
+
+}  // namespace
+
+TEST_CASE("window fills: strips drawn again on 2 and 3 threads == one thread == per-fragment path") {
+  std::uint64_t fills = 0, pooled = 0, settled = 0;
+#ifdef FFSIM_SANITIZE
+  const std::uint32_t seeds = 3;
+#else
+  const std::uint32_t seeds = 8;
+#endif
+  for (const char* profile : {"geforce256", "rgba12"})
+    for (std::uint32_t seed = 1; seed <= seeds; ++seed) {
+      INFO("profile ", profile, " seed ", seed);
+      // Long strips (over kSplitWindowFill vertices a pass): fills over the pool;
+      // short ones: on the caller.
+      const bool long_strips = seed % 2 == 1;
+      const Program p = load_trace_text(strips_trace(profile, seed, long_strips ? 12 : 4, long_strips ? 120 : 16, 3),
+                                        "strips.trace", {});
+      const Outcome one = run(p, 1, 0, 256), ref = run(p, 1, 1, 256);
+      check_same(one, ref);
+      CHECK(one.fills == 0);  // (one thread: no batches)
+      for (int threads : {2, 3}) {
+        INFO("threads ", threads);
+        const Outcome many = run(p, threads, 0, 256);
+        check_same(many, one);
+        CHECK(many.splits > 0);
+        fills += many.fills;
+        pooled += many.pooled;
+        if (!long_strips) CHECK(many.pooled == 0);  // (too few vertices a flush)
+        settled += many.settled;
+        CHECK(many.replays > 0);
+        // With the batches never split, the fills are made on the caller.
+        const Outcome whole = run(p, threads, 0, 1 << 30);
+        check_same(whole, one);
+        CHECK(whole.splits == 0);
+        CHECK(whole.pooled == 0);
+      }
+    }
+  CHECK(fills > 0);
+  CHECK(pooled > 0);
+  CHECK(settled > 0);  // (a run recorded again while fills were pending)
+}
+
+TEST_CASE("window fills: the terrain's replayed passes leave their window vertices to the flush") {
+  // kautz-imaging-aa's terrain: the first pass records the strips' runs, the
+  // later passes replay them; each replayed strip's glEnd takes its triangles
+  // from the memo and leaves its vertices to the flush. The buffers at 1 and 2
+  // threads are compared by test_fast_threads.cpp's terrain test; here the
+  // fills are counted.
+  LoadOptions lo;
+  lo.sets = {{"scene", "1"}, {"tw", "256"}, {"th", "192"}, {"rays", "16"}};
+  const Program prog = load_trace_file(std::string(FFSIM_SOURCE_DIR) + "/traces/kautz-imaging-aa.trace", lo);
+  const Outcome one = run(prog, 1, 0, Context(prog.profile, 8, 8).split_fragments());
+  const Outcome two = run(prog, 2, 0, Context(prog.profile, 8, 8).split_fragments());
+  check_same(two, one);
+  CHECK(one.fills == 0);
+  MESSAGE("terrain 256x192: ", two.fills, " glEnds left their window vertices to the flush");
+  CHECK(two.fills > 0);
+}
