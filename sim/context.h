@@ -728,6 +728,10 @@ class Context {
     const GeometryEntry* geo = nullptr;  // (settle_window_fills before the memo may drop it)
     VertexRunFill fill;                  // (fill.pending: the record, likewise)
   };
+  // One more, for the batch's flush. (Out of line: with the push inlined in
+  // glEnd, the compiler inlined less of glEnd's own loops and four one-thread
+  // terrain frames took 0.6 M more instructions, performance.md 35.)
+  void leave_window_fill(const WindowFill& f);
   // Fills them all: over the pool when `split` and there are enough, else here.
   void run_window_fills(const DrawSetup& ds, bool split);
   // Fills them here, now: before the geometry or vertex-run memo inserts or

@@ -221,8 +221,7 @@ void Context::end() {
       // Its triangles come from the memo and the record outlives the batch (no
       // memo changes before settle_window_fills): nothing reads these vertices
       // before the flush, which fills them over the pool (performance.md 35).
-      window_fills_.push_back({shared_base, n, geo, fill});
-      ++deferred_window_fills_;
+      leave_window_fill({shared_base, n, geo, fill});
     } else {
       WindowVertex* w = shared_wv->data() + shared_base;
       memo_window_vertices(*geo, fill.pending ? object : v.data(), fill.pending ? &fill : nullptr, 0, n, ds, w);
@@ -245,13 +244,24 @@ void Context::end() {
   const bool direct = shared && !from_memo &&
                       (begin_mode_ == gl::TRIANGLES || begin_mode_ == gl::TRIANGLE_STRIP || begin_mode_ == gl::TRIANGLE_FAN);
   if (direct) {
-    auto triangle = [&](std::size_t a, std::size_t b, std::size_t c) {
-      if (ds.bands) {
-        batch_triangle(shared_base + a, shared_base + b, shared_base + c, ds);
-      } else {
-        const WindowVertex* w = window_scratch_.data() + shared_base;  // (0: one glEnd at a time)
-        sequence_scratch_.push_back({w + a, w + b, w + c});
+    // One thread: the sequence sized once for at most n − 2 triangles, written
+    // in place and cut to what was written (no capacity check per triangle).
+    const WindowVertex* const sw = window_scratch_.data() + shared_base;  // (0: one glEnd at a time)
+    TriangleRef* out = nullptr;
+    if (!ds.bands) {
+      sequence_scratch_.resize(n - 2);  // (empty before: cleared above; n >= 3: shared)
+      out = sequence_scratch_.data();
+    }
+    struct Cut {  // (however this ends)
+      std::vector<TriangleRef>& seq;
+      TriangleRef*& out;
+      ~Cut() {
+        if (out) seq.resize(static_cast<std::size_t>(out - seq.data()));
       }
+    } cut{sequence_scratch_, out};
+    auto triangle = [&](std::size_t a, std::size_t b, std::size_t c) {
+      if (ds.bands) batch_triangle(shared_base + a, shared_base + b, shared_base + c, ds);
+      else *out++ = {sw + a, sw + b, sw + c};
     };
     if (begin_mode_ == gl::TRIANGLES) {
       for (std::size_t i = 0; i + 2 < n; i += 3) triangle(i, i + 1, i + 2);

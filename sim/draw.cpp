@@ -328,6 +328,11 @@ void Context::memo_window_vertices(const GeometryEntry& geo, const ClipVertex* c
   window_attributes_n(c + i0, geo.iw.data() + i0, i1 - i0, ds, w + i0, fill, memo);
 }
 
+void Context::leave_window_fill(const WindowFill& f) {
+  window_fills_.push_back(f);
+  ++deferred_window_fills_;
+}
+
 void Context::run_window_fills(const DrawSetup& ds, bool split) {
   if (window_fills_.empty()) return;
   struct Done {  // (emptied however this ends)
