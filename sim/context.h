@@ -924,7 +924,7 @@ class Context {
   // window) sum to at least split_fragments_ pixels is split into bands of rows.
   std::int64_t split_fragments_ = kSplitFragments;
   static constexpr std::size_t kBatchTriangles = 2048;  // bounds the batch's memory
-  static constexpr std::size_t kSplitWindowFill = 1024;  // fewer window fills are made on the caller (performance.md 35)
+  static constexpr std::size_t kSplitWindowFill = 1024;  // fewer vertices to fill at a flush: filled on the caller (performance.md 35)
   // The span path shades a run of this many fragments or more on its own, not in
   // a group (sim/draw.cpp raster_triangle).
   static constexpr int kLongRun = 64;
