@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "fast_scene.h"
+#include "trace_test_util.h"
 #include "sim/trace/executor.h"
 #include "sim/trace/trace.h"
 
@@ -57,15 +58,7 @@ Outcome run(const Program& p, int mode) {  // 0: memo on, 1: memo off, 2: per-fr
 }
 
 void check_same(const Outcome& a, const Outcome& b) {
-  REQUIRE(a.result.ok);
-  REQUIRE(b.result.ok);
-  REQUIRE(a.result.hashes.size() == b.result.hashes.size());
-  for (std::size_t k = 0; k < a.result.hashes.size(); ++k) {
-    INFO("hash step at ", a.result.hashes[k].where.str());
-    CHECK(a.result.hashes[k].hex == b.result.hashes[k].hex);
-  }
-  CHECK(a.result.final_hashes == b.result.final_hashes);
-  CHECK(a.result.gl_errors == b.result.gl_errors);
+  check_same_run(a.result, b.result);
   CHECK(a.color == b.color);
   CHECK(a.secondary == b.secondary);
   CHECK(a.normal == b.normal);

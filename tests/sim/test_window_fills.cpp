@@ -13,6 +13,7 @@
 #include <string>
 
 #include "fast_scene.h"
+#include "trace_test_util.h"
 #include "sim/trace/executor.h"
 #include "sim/trace/trace.h"
 
@@ -44,18 +45,6 @@ Outcome run(const Program& p, int threads, int mode, int split) {
   o.replays = c.vertex_run_memo().hits();
   o.recordings = c.vertex_run_memo().misses();
   return o;
-}
-
-void check_same(const Outcome& a, const Outcome& b) {
-  REQUIRE(a.result.ok);
-  REQUIRE(b.result.ok);
-  REQUIRE(a.result.hashes.size() == b.result.hashes.size());
-  for (std::size_t k = 0; k < a.result.hashes.size(); ++k) {
-    INFO("hash step at ", a.result.hashes[k].where.str());
-    CHECK(a.result.hashes[k].hex == b.result.hashes[k].hex);
-  }
-  CHECK(a.result.final_hashes == b.result.final_hashes);
-  CHECK(a.result.gl_errors == b.result.gl_errors);
 }
 
 // `strips` triangle strips of `len` vertices over a 96x64 window, each vertex
@@ -150,12 +139,12 @@ TEST_CASE("window fills: strips drawn again on 2 and 3 threads == one thread == 
       const Program p = load_trace_text(
           strips_trace(profile, seed, long_strips ? 12 : 4, long_strips ? 120 : 16, 3, churn), "strips.trace", {});
       const Outcome one = run(p, 1, 0, 256), ref = run(p, 1, 1, 256);
-      check_same(one, ref);
+      check_same_run(one.result, ref.result);
       CHECK(one.fills == 0);  // (one thread: no batches)
       for (int threads : {2, 3}) {
         INFO("threads ", threads);
         const Outcome many = run(p, threads, 0, 256);
-        check_same(many, one);
+        check_same_run(many.result, one.result);
         CHECK(many.splits > 0);
         fills += many.fills;
         pooled += many.pooled;
@@ -164,7 +153,7 @@ TEST_CASE("window fills: strips drawn again on 2 and 3 threads == one thread == 
         CHECK(many.replays > 0);
         // With the batches never split, the fills are made on the caller.
         const Outcome whole = run(p, threads, 0, 1 << 30);
-        check_same(whole, one);
+        check_same_run(whole.result, one.result);
         CHECK(whole.splits == 0);
         CHECK(whole.pooled == 0);
       }
@@ -185,7 +174,7 @@ TEST_CASE("window fills: the terrain's replayed passes leave their window vertic
   const Program prog = load_trace_file(std::string(FFSIM_SOURCE_DIR) + "/traces/kautz-imaging-aa.trace", lo);
   const Outcome one = run(prog, 1, 0, Context(prog.profile, 8, 8).split_fragments());
   const Outcome two = run(prog, 2, 0, Context(prog.profile, 8, 8).split_fragments());
-  check_same(two, one);
+  check_same_run(two.result, one.result);
   CHECK(one.fills == 0);
   MESSAGE("terrain 256x192: ", two.fills, " glEnds left their window vertices to the flush");
   CHECK(two.fills > 0);
