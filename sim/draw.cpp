@@ -957,11 +957,21 @@ void Context::flush_batch(const DrawSetup& ds) {
     FragmentSpan& bs = band_spans_[static_cast<std::size_t>(b)].span;
     std::vector<TriangleRef>& seq = band_scratch_[static_cast<std::size_t>(b)].sequence;
     seq.clear();
-    for (const BatchTriangle& t : batch_triangles_)  // every triangle, in order; only this band's rows
-      if (t.r0 < y1 && t.r1 > y0) seq.push_back(tri(t));
-    if (replay) {
-      replay_sequence(ds, seq, (*replay)[static_cast<std::size_t>(b)], bs, b);
-    } else if (cache) {
+    if (replay) {  // this band's triangles as the recording holds them (the key fixes them)
+      const RasterRecording& rec = (*replay)[static_cast<std::size_t>(b)];
+      for (const std::uint32_t i : rec.band_triangles) seq.push_back(tri(batch_triangles_[i]));
+      replay_sequence(ds, seq, rec, bs, b);
+      return;
+    }
+    // Every triangle, in order; only this band's rows (kept by a recording).
+    std::vector<std::uint32_t>* kept = cache ? &recorded[static_cast<std::size_t>(b)].band_triangles : nullptr;
+    for (std::size_t i = 0; i < batch_triangles_.size(); ++i) {
+      const BatchTriangle& t = batch_triangles_[i];
+      if (t.r0 >= y1 || t.r1 <= y0) continue;
+      seq.push_back(tri(t));
+      if (kept) kept->push_back(static_cast<std::uint32_t>(i));
+    }
+    if (cache) {
       record_sequence(ds, seq, y0, y1, bs, b, recorded[static_cast<std::size_t>(b)]);
     } else {
       for (const TriangleRef& t : seq) raster_triangle(ds, t, y0, y1, bs, b);

@@ -16,7 +16,7 @@ std::size_t bytes_of(const std::vector<T, A>& v) {
 }  // namespace
 
 std::size_t RasterRecording::bytes() const {
-  return sizeof(*this) + bytes_of(steps) + bytes_of(groups) + bytes_of(long_runs) + arena.capacity();
+  return sizeof(*this) + bytes_of(steps) + bytes_of(groups) + bytes_of(long_runs) + bytes_of(band_triangles) + arena.capacity();
 }
 
 std::uint64_t RasterCache::hash(const std::vector<std::int64_t>& key) {

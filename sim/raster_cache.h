@@ -91,6 +91,11 @@ struct alignas(64) RasterRecording {  // (a band's own cache lines: the bands re
   // The groups' arrays (the depth comparisons are added by replays, under the
   // same one-thread-at-a-time rule as RecordedGroup::depth_test).
   mutable RecordingArena arena;
+  // A band's recording (Context::flush_batch): the batch's triangles its
+  // sequence held, by index in the batch, in order. The key fixes the batch's
+  // triangles, their rows and the bands, so a replay's band holds these same
+  // ones, and takes them from here instead of testing every triangle's rows.
+  std::vector<std::uint32_t> band_triangles;
   std::uint64_t joined = 0, met = 0;
   std::size_t bytes() const;
 };
