@@ -964,15 +964,15 @@ void Context::flush_batch(const DrawSetup& ds) {
       return;
     }
     // Every triangle, in order; only this band's rows (kept by a recording).
-    std::vector<std::uint32_t>* kept = cache ? &recorded[static_cast<std::size_t>(b)].band_triangles : nullptr;
+    RasterRecording* const rec = cache ? &recorded[static_cast<std::size_t>(b)] : nullptr;
     for (std::size_t i = 0; i < batch_triangles_.size(); ++i) {
       const BatchTriangle& t = batch_triangles_[i];
       if (t.r0 >= y1 || t.r1 <= y0) continue;
       seq.push_back(tri(t));
-      if (kept) kept->push_back(static_cast<std::uint32_t>(i));
+      if (rec) rec->band_triangles.push_back(static_cast<std::uint32_t>(i));
     }
-    if (cache) {
-      record_sequence(ds, seq, y0, y1, bs, b, recorded[static_cast<std::size_t>(b)]);
+    if (rec) {
+      record_sequence(ds, seq, y0, y1, bs, b, *rec);
     } else {
       for (const TriangleRef& t : seq) raster_triangle(ds, t, y0, y1, bs, b);
       shade_group(ds, bs, b);
