@@ -299,6 +299,8 @@ struct TraceCase {
   int threads = 1;
 };
 
+std::string window_name(const TraceCase& c) { return std::to_string(c.width) + "x" + std::to_string(c.height); }
+
 struct TraceRow {
   TraceCase c;
   int passes = 0;
@@ -356,7 +358,7 @@ Plot scaling_plot(const std::vector<TraceRow>& rows, bool threads) {
   p.x_log = p.y_log = true;
   p.label_points = false;
   for (const TraceRow& r : rows) {
-    const std::string name = r.c.trace + " " + r.c.scene;
+    const std::string name = r.c.trace + " " + r.c.scene + (threads ? " " + window_name(r.c) : "");
     const double x = threads ? r.c.threads : static_cast<double>(r.c.width) * r.c.height;
     if (p.series.empty() || p.series.back().name != name) p.series.push_back({name, {}, ""});
     p.series.back().points.push_back({x, 1.0 / r.t.median, name + ": " + fixed(1.0 / r.t.median, 1) + " fps", false});
@@ -501,8 +503,8 @@ std::string perf_usage() {
          "  traces   frames/s of kautz-imaging-hard, kautz-imaging-aa, kautz-geforce-aa on the\n"
          "           polygon at 512^2 and the terrain at 640x480, one thread\n"
          "  scaling  frames/s of the same traces at 256^2, 512^2, 1024^2, 2048^2\n"
-         "  threads  frames/s of the terrain at 640x480 and the polygon at 1024^2 for 1 ..\n"
-         "           hardware threads, each speed-up against one thread, and the machine's\n"
+         "  threads  frames/s of the terrain at 640x480 and 1280x960 and the polygon at 1024^2\n"
+         "           for 1 .. hardware threads, each speed-up against one thread, and the machine's\n"
          "           parallel ceiling (a cache-resident loop per thread, all at once) before\n"
          "           and after the table; for each threaded row its serial part (the calling\n"
          "           thread outside the pool's runs), Amdahl's bound from it, the ceiling\n"
@@ -594,7 +596,7 @@ int run_perf(const std::vector<std::string>& args, std::ostream& out, std::ostre
       out << cell(r.c.trace, 22) << cell(r.c.scene, 9) << cell(std::to_string(r.c.width) + "x" + std::to_string(r.c.height), 11)
           << cell(std::to_string(r.c.threads), 8) << cell(fixed(fps, 1), 10) << cell(fixed(r.fragments / 1e6, 2), 10)
           << cell(fixed(r.fragments * fps / 1e6, 1), 10) << fixed(floor, 0) << "\n";
-      md << "| " << r.c.trace << " | " << r.c.scene << " | " << r.c.width << "x" << r.c.height << " | " << r.c.threads << " | "
+      md << "| " << r.c.trace << " | " << r.c.scene << " | " << window_name(r.c) << " | " << r.c.threads << " | "
          << fixed(fps, 1) << " | " << fixed(1.0 / r.t.max, 1) << " .. " << fixed(1.0 / r.t.min, 1) << " | " << r.passes << " | "
          << fixed(r.fragments / 1e6, 2) << " | " << fixed(r.fragments * fps / 1e6, 1) << " | " << fixed(floor, 0) << " |\n";
       csv.f << table << "," << r.c.trace << "," << r.c.scene << "," << r.c.width << "," << r.c.height << "," << r.c.threads << ","
@@ -652,28 +654,37 @@ int run_perf(const std::vector<std::string>& args, std::ostream& out, std::ostre
       };
       const std::string ceiling_before = ceilings();
       table_head("Scaling with worker threads (`--threads`)");
-      // The terrain (small triangles: drawn whole on one thread) and the polygon at
-      // 1024^2 (two large triangles: split into row bands).
+      // The terrain at 640x480 (the paper's scene: small triangles, about a sixth of
+      // the frame serial, docs/performance.md 31) and at twice that in each
+      // direction (the same serial work beside four times the pixels, 37), and the
+      // polygon at 1024^2 (two large triangles: split into row bands).
+      struct Window {
+        const char* scene;
+        int w, h;
+      };
+      const std::vector<Window> windows =
+          o.quick ? std::vector<Window>{{"terrain", 320, 240}, {"terrain", 640, 480}, {"polygon", 256, 256}}
+                  : std::vector<Window>{{"terrain", 640, 480}, {"terrain", 1280, 960}, {"polygon", 1024, 1024}};
       for (const std::string& t : traces)
-        for (const char* scene : {"terrain", "polygon"})
+        for (const Window& win : windows)
           for (int n : o.thread_counts) {
-            const bool terrain = std::string(scene) == "terrain";
-            const int w = terrain ? (o.quick ? 320 : 640) : (o.quick ? 256 : 1024);
-            const int h = terrain ? (o.quick ? 240 : 480) : w;
             // The machine's ceiling for this row, just before it (its speed changes
             // from minute to minute): the row's machine bound reads against it.
             const double ceiling = n > 1 ? parallel_ceiling(n, 3) : 0;
-            thread_rows.push_back(run_trace_case(o, {t, scene, w, h, n}, o.repeat));
+            thread_rows.push_back(run_trace_case(o, {t, win.scene, win.w, win.h, n}, o.repeat));
             thread_rows.back().ceiling = ceiling;
             frame_line(thread_rows.back(), csv, "threads");
           }
-      // Speed-ups against the same trace and scene on one thread (this table's row).
+      // Speed-ups against the same trace, scene and window on one thread (this table's row).
+      auto same_case = [](const TraceCase& a, const TraceCase& b) {
+        return a.trace == b.trace && a.scene == b.scene && a.width == b.width && a.height == b.height;
+      };
       std::string speedups;
       for (const TraceRow& r : thread_rows)
         for (const TraceRow& one : thread_rows)
-          if (r.c.threads > 1 && one.c.threads == 1 && one.c.trace == r.c.trace && one.c.scene == r.c.scene)
-            speedups += (speedups.empty() ? "" : ", ") + r.c.trace + " " + r.c.scene + " " + std::to_string(r.c.threads) +
-                        " threads " + fixed(one.t.median / r.t.median, 2) + "x";
+          if (r.c.threads > 1 && one.c.threads == 1 && same_case(one.c, r.c))
+            speedups += (speedups.empty() ? "" : ", ") + r.c.trace + " " + r.c.scene + " " + window_name(r.c) + " " +
+                        std::to_string(r.c.threads) + " threads " + fixed(one.t.median / r.t.median, 2) + "x";
       if (!speedups.empty()) {
         out << "speed-up against one thread: " << speedups << "\n";
         md << "\nSpeed-up against one thread (medians): " << speedups << ".\n";
@@ -686,15 +697,15 @@ int run_perf(const std::vector<std::string>& args, std::ostream& out, std::ostre
       std::ostringstream split_md, split_out;
       for (const TraceRow& r : thread_rows)
         for (const TraceRow& one : thread_rows)
-          if (r.c.threads > 1 && one.c.threads == 1 && one.c.trace == r.c.trace && one.c.scene == r.c.scene) {
+          if (r.c.threads > 1 && one.c.threads == 1 && same_case(one.c, r.c)) {
             const double bound = amdahl_bound(one.t.median, r.serial.median, r.c.threads);
             const double mbound = machine_bound(one.t.median, r.serial.median, r.c.threads, r.ceiling);
             const double speedup = one.t.median / r.t.median;
-            split_out << "  " << cell(r.c.trace + " " + r.c.scene, 32) << r.c.threads << " threads: serial "
+            split_out << "  " << cell(r.c.trace + " " + r.c.scene + " " + window_name(r.c), 42) << r.c.threads << " threads: serial "
                 << fixed(r.serial.median * 1e3, 3) << " ms of " << fixed(r.t.median * 1e3, 3) << " ms, speed-up "
                 << fixed(speedup, 2) << "x, Amdahl bound " << fixed(bound, 2) << "x; machine ceiling "
                 << fixed(r.ceiling, 2) << "x, machine bound " << fixed(mbound, 2) << "x\n";
-            split_md << "| " << r.c.trace << " | " << r.c.scene << " | " << r.c.threads << " | " << fixed(r.t.median * 1e3, 3)
+            split_md << "| " << r.c.trace << " | " << r.c.scene << " | " << window_name(r.c) << " | " << r.c.threads << " | " << fixed(r.t.median * 1e3, 3)
                      << " | " << fixed(r.serial.median * 1e3, 3) << " | " << fixed(100 * r.serial.median / r.t.median, 0)
                      << " % | " << fixed(speedup, 2) << "x | " << fixed(bound, 2) << "x | " << fixed(r.ceiling, 2) << "x | "
                      << fixed(mbound, 2) << "x |\n";
@@ -710,8 +721,8 @@ int run_perf(const std::vector<std::string>& args, std::ostream& out, std::ostre
               "`Context::pool_seconds`; Amdahl bound: one thread's frame / (serial + the rest / threads), "
               "docs/performance.md 31; machine ceiling: this machine's speed-up for a cache-resident loop per "
               "thread, measured just before the row; machine bound: Amdahl's with the rest / that ceiling, "
-              "docs/performance.md 33):\n\n| trace | scene | threads | frame ms | serial ms | serial share | speed-up | "
-              "Amdahl bound | machine ceiling | machine bound |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n"
+              "docs/performance.md 33):\n\n| trace | scene | window | threads | frame ms | serial ms | serial share | speed-up | "
+              "Amdahl bound | machine ceiling | machine bound |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n"
            << split_md.str();
       if (!ceiling_before.empty()) {
         const std::string ceiling_after = ceilings();

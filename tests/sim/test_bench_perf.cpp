@@ -144,11 +144,14 @@ TEST_CASE("bench --perf: the threads table prints each speed-up and the machine'
     for (auto at = s.find(what); at != std::string::npos; at = s.find(what, at + 1)) ++n;
     return n;
   };
-  // One speed-up per trace and scene at 2 threads (3 traces x 2 scenes), and the
-  // ceiling for 2 threads before and after the table.
+  // One speed-up per trace, scene and window at 2 threads (3 traces x the terrain
+  // at two windows and the polygon), and the ceiling for 2 threads before and
+  // after the table.
   const std::string speedups = line_with(r.out, "speed-up against one thread: ");
-  CHECK(count(speedups, " 2 threads ") == 6);
-  CHECK(count(speedups, "kautz-geforce-aa terrain 2 threads ") == 1);
+  CHECK(count(speedups, " 2 threads ") == 9);
+  CHECK(count(speedups, "kautz-geforce-aa terrain 320x240 2 threads ") == 1);
+  CHECK(count(speedups, "kautz-geforce-aa terrain 640x480 2 threads ") == 1);
+  CHECK(count(speedups, "kautz-geforce-aa polygon 256x256 2 threads ") == 1);
   const std::string ceiling = line_with(r.out, "parallel ceiling of this machine");
   CHECK(count(ceiling, "2 threads ") == 2);
   std::ifstream md(dir / "perf.md");
@@ -157,14 +160,14 @@ TEST_CASE("bench --perf: the threads table prints each speed-up and the machine'
   CHECK(text.str().find("Speed-up against one thread (medians): ") != std::string::npos);
   CHECK(text.str().find("Parallel ceiling of this machine, measured just before / after this table") != std::string::npos);
   // Each threaded row's serial part and Amdahl's bound: one line each, in the
-  // text, perf.md's table and perf_threads_serial.csv (header and 6 rows).
-  CHECK(count(r.out, " 2 threads: serial ") == 6);
-  CHECK(count(r.out, ", Amdahl bound ") == 6);
-  CHECK(count(r.out, "; machine ceiling ") == 6);
-  CHECK(text.str().find("| trace | scene | threads | frame ms | serial ms | serial share | speed-up | Amdahl bound | "
+  // text, perf.md's table and perf_threads_serial.csv (header and 9 rows).
+  CHECK(count(r.out, " 2 threads: serial ") == 9);
+  CHECK(count(r.out, ", Amdahl bound ") == 9);
+  CHECK(count(r.out, "; machine ceiling ") == 9);
+  CHECK(text.str().find("| trace | scene | window | threads | frame ms | serial ms | serial share | speed-up | Amdahl bound | "
                         "machine ceiling | machine bound |") != std::string::npos);
   const auto split_rows = read_csv(dir / "perf_threads_serial.csv");
-  REQUIRE(split_rows.size() == 7);
+  REQUIRE(split_rows.size() == 10);
   CHECK(split_rows[0] == std::vector<std::string>{"trace", "scene", "width", "height", "threads", "median_s", "serial_median_s",
                                                   "one_thread_median_s", "speedup", "amdahl_bound", "machine_ceiling",
                                                   "machine_bound"});
