@@ -444,10 +444,71 @@ int parse_args(const std::vector<std::string>& args, Options& o, std::ostream& e
   return 0;
 }
 
+// --trace FILE --threads A,B,...: each round replays one frame per thread count
+// (the order reversed every other round), so every count sees the same minutes
+// of this machine; the speed-up of each count is the median of the rounds'
+// ratios against the first count (docs/performance.md 37).
+void time_alternated(const Options& o, const trace::Program& prog, std::ostream& out) {
+  const std::vector<int>& counts = o.thread_counts;
+  const std::size_t n = counts.size();
+  // The machine's ceiling for each count above one, just before the frames.
+  std::vector<double> ceiling(n, 0);
+  for (std::size_t k = 0; k < n; ++k) ceiling[k] = counts[k] > 1 ? parallel_ceiling(counts[k], 3) : 0;
+  std::vector<std::vector<double>> times(n), serial(n), ratios(n);
+  std::vector<double> round(n);
+  std::uint64_t fragments = 0;
+  std::ostringstream sink;
+  for (int r = 0; r <= o.repeat; ++r) {  // r = 0: warm-up
+    for (std::size_t j = 0; j < n; ++j) {
+      const std::size_t k = r % 2 == 0 ? j : n - 1 - j;
+      Context ctx(prog.profile, prog.width, prog.height);
+      const auto t0 = Clock::now();
+      check(trace::run_program_on(ctx, prog, quiet_run(counts[k]), sink), o.trace_file);
+      round[k] = seconds_since(t0);
+      fragments = ctx.fragments_written();
+      if (r > 0) {
+        times[k].push_back(round[k]);
+        serial[k].push_back(std::max(0.0, round[k] - ctx.pool_seconds()));
+      }
+    }
+    if (r > 0)
+      for (std::size_t k = 0; k < n; ++k) ratios[k].push_back(round[0] / round[k]);
+  }
+  out << o.trace_file << ": " << prog.width << "x" << prog.height << ", " << prog.pass_count() << " passes, " << fragments
+      << " fragments; " << o.repeat << " rounds, each one frame per thread count (the order reversed every other round)\n";
+  const double first = spread(times[0]).median;
+  for (std::size_t k = 0; k < n; ++k) {
+    const Timing t = spread(times[k]);
+    out << "  " << counts[k] << (counts[k] == 1 ? " thread:  " : " threads: ") << "median " << fixed(t.median * 1e3, 3)
+        << " ms (" << fixed(t.min * 1e3, 3) << " .. " << fixed(t.max * 1e3, 3) << "), " << fixed(1 / t.median, 1)
+        << " frames/s";
+    if (counts[k] > 1) {
+      const double s = spread(serial[k]).median;
+      out << "; serial part " << fixed(s * 1e3, 3) << " ms";
+      if (k > 0)
+        out << "; speed-up against " << counts[0] << " (median of the rounds' ratios) " << fixed(spread(ratios[k]).median, 2)
+            << "x";
+      if (k > 0 && counts[0] == 1)
+        out << ", Amdahl bound " << fixed(amdahl_bound(first, s, counts[k]), 2) << "x, machine ceiling "
+            << fixed(ceiling[k], 2) << "x, machine bound " << fixed(machine_bound(first, s, counts[k], ceiling[k]), 2) << "x";
+    } else if (k > 0) {
+      out << "; speed-up against " << counts[0] << " (median of the rounds' ratios) " << fixed(spread(ratios[k]).median, 2)
+          << "x";
+    }
+    out << "\n";
+  }
+  out << "each CPU alone after these frames (a cache-resident loop on one pinned thread): " << describe_cpu_speeds(cpu_speeds(3))
+      << "\n";
+}
+
 // --trace FILE: load once, replay --repeat times on fresh Contexts (outputs off).
 int time_one_trace(const Options& o, std::ostream& out, std::ostream& err) {
   try {
     const trace::Program prog = load(o.trace_file, o.sets);
+    if (o.thread_counts.size() > 1) {
+      time_alternated(o, prog, out);
+      return 0;
+    }
     std::vector<double> times, serial;
     std::uint64_t fragments = 0;
     std::ostringstream sink;
@@ -495,7 +556,7 @@ int time_one_trace(const Options& o, std::ostream& out, std::ostream& err) {
 std::string perf_usage() {
   return "usage: ffsim bench --perf [--quick] [--only stages|traces|scaling|threads] [--repeat N]\n"
          "                          [--size N] [--threads 1,2,...] [--traces DIR] [--out DIR]\n"
-         "       ffsim bench --perf --trace FILE [--set NAME=EXPR ...] [--repeat N] [--threads N]\n\n"
+         "       ffsim bench --perf --trace FILE [--set NAME=EXPR ...] [--repeat N] [--threads N[,M...]]\n\n"
          "Throughput (issue 10), each time beside its memory-bandwidth floor (the bytes the pass\n"
          "must read and write / this machine's measured copy bandwidth):\n"
          "  stages   Mfragments/s of one pass on one core, N x N window (--size, default 1024;\n"
@@ -518,7 +579,10 @@ std::string perf_usage() {
          "--trace FILE: replay one trace --repeat times (loaded once, outputs off) and print its\n"
          "median frame time, frames/s and Mfragments/s (with --threads N > 1 also the median serial\n"
          "part: the time this thread spent outside the pool's runs, and this machine's parallel ceiling\n"
-         "measured just before the frames).\n";
+         "measured just before the frames). With a list (--threads 1,2) each of the N rounds replays\n"
+         "one frame per count, the order reversed every other round, and prints each count's median\n"
+         "and its speed-up against the first count as the median of the rounds' ratios (with a first\n"
+         "count of 1 also Amdahl's bound, the machine's ceiling and the machine bound).\n";
 }
 
 namespace {
@@ -663,7 +727,7 @@ int run_perf(const std::vector<std::string>& args, std::ostream& out, std::ostre
         int w, h;
       };
       const std::vector<Window> windows =
-          o.quick ? std::vector<Window>{{"terrain", 320, 240}, {"terrain", 640, 480}, {"polygon", 256, 256}}
+          o.quick ? std::vector<Window>{{"terrain", 160, 120}, {"terrain", 320, 240}, {"polygon", 256, 256}}
                   : std::vector<Window>{{"terrain", 640, 480}, {"terrain", 1280, 960}, {"polygon", 1024, 1024}};
       for (const std::string& t : traces)
         for (const Window& win : windows)
