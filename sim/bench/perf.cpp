@@ -316,57 +316,33 @@ Sets scene_sets(const TraceCase& c) {
   return {{"scene", "1"}, {"res", "128"}, {"tw", std::to_string(c.width)}, {"th", std::to_string(c.height)}};
 }
 
-trace::Program load_case(const Options& o, const TraceCase& c) {
-  return load((fs::path(o.traces_dir) / (c.trace + ".trace")).string(), scene_sets(c));
-}
-
-// One frame of `prog` per thread count in each round, the order reversed every
-// other round, so that every count sees the same minutes of this machine
-// (docs/performance.md 37); round 0 is the warm-up. rows[k] is counts[k]'s (its
-// case c at that count), ratios[k] the rounds' frame ratios counts[0] / counts[k].
-struct Alternated {
-  std::vector<TraceRow> rows;
-  std::vector<std::vector<double>> ratios;
-};
-
-Alternated run_alternated(const trace::Program& prog, const std::string& label, const TraceCase& c,
-                          const std::vector<int>& counts, int repeat) {
-  const std::size_t n = counts.size();
-  Alternated a;
-  a.rows.resize(n);
-  a.ratios.resize(n);
-  std::vector<std::vector<double>> times(n), serial(n);
-  std::vector<double> round(n);
+// `repeat` frames of `prog` on c.threads threads, each on a fresh Context, after
+// one warm-up frame (which gives the fragment count), back to back.
+TraceRow run_frames(const trace::Program& prog, const std::string& label, const TraceCase& c, int repeat) {
+  TraceRow row;
+  row.c = c;
+  row.passes = prog.pass_count();
   std::ostringstream sink;
-  for (int r = 0; r <= repeat; ++r) {
-    for (std::size_t j = 0; j < n; ++j) {
-      const std::size_t k = r % 2 == 0 ? j : n - 1 - j;
-      Context ctx(prog.profile, prog.width, prog.height);
-      const auto t0 = Clock::now();
-      check(trace::run_program_on(ctx, prog, quiet_run(counts[k]), sink), label);
-      round[k] = seconds_since(t0);
-      if (r == 0) {
-        a.rows[k].fragments = static_cast<double>(ctx.fragments_written());
-      } else {
-        times[k].push_back(round[k]);
-        serial[k].push_back(std::max(0.0, round[k] - ctx.pool_seconds()));
-      }
+  std::vector<double> times, serial;
+  for (int r = 0; r <= repeat; ++r) {  // r = 0: warm-up
+    Context ctx(prog.profile, prog.width, prog.height);
+    const auto t0 = Clock::now();
+    check(trace::run_program_on(ctx, prog, quiet_run(c.threads), sink), label);
+    const double t = seconds_since(t0);
+    if (r == 0) {
+      row.fragments = static_cast<double>(ctx.fragments_written());
+    } else {
+      times.push_back(t);
+      serial.push_back(std::max(0.0, t - ctx.pool_seconds()));
     }
-    if (r > 0)
-      for (std::size_t k = 0; k < n; ++k) a.ratios[k].push_back(round[0] / round[k]);
   }
-  for (std::size_t k = 0; k < n; ++k) {
-    a.rows[k].c = c;
-    a.rows[k].c.threads = counts[k];
-    a.rows[k].passes = prog.pass_count();
-    a.rows[k].t = spread(times[k]);
-    a.rows[k].serial = spread(serial[k]);
-  }
-  return a;
+  row.t = spread(times);
+  row.serial = spread(serial);
+  return row;
 }
 
 TraceRow run_trace_case(const Options& o, const TraceCase& c, int repeat) {
-  return run_alternated(load_case(o, c), c.trace, c, {c.threads}, repeat).rows[0];
+  return run_frames(load((fs::path(o.traces_dir) / (c.trace + ".trace")).string(), scene_sets(c)), c.trace, c, repeat);
 }
 
 // Lower bound per fragment of a paper pass: every pass depth-tests (reads 4 B of
@@ -473,35 +449,33 @@ int parse_args(const std::vector<std::string>& args, Options& o, std::ostream& e
   return 0;
 }
 
-// --trace FILE --threads A,B,...: each round replays one frame per thread count
-// (the order reversed every other round), so every count sees the same minutes
-// of this machine; the speed-up of each count is the median of the rounds'
-// ratios against the first count (docs/performance.md 37).
-void time_alternated(const Options& o, const trace::Program& prog, std::ostream& out) {
-  const std::vector<int>& counts = o.thread_counts;
-  const std::size_t n = counts.size();
-  // The machine's ceiling for each count above one, just before the frames.
-  std::vector<double> ceiling(n, 0);
-  for (std::size_t k = 0; k < n; ++k) ceiling[k] = counts[k] > 1 ? parallel_ceiling(counts[k], 3) : 0;
-  const Alternated a = run_alternated(prog, o.trace_file, TraceCase{}, counts, o.repeat);
-  const auto fragments = static_cast<std::uint64_t>(a.rows[0].fragments);
-  const auto& ratios = a.ratios;
-  out << o.trace_file << ": " << prog.width << "x" << prog.height << ", " << prog.pass_count() << " passes, " << fragments
-      << " fragments; " << o.repeat << " rounds, each one frame per thread count (the order reversed every other round)\n";
-  const double first = a.rows[0].t.median;
-  for (std::size_t k = 0; k < n; ++k) {
-    const Timing& t = a.rows[k].t;
-    out << "  " << counts[k] << (counts[k] == 1 ? " thread:  " : " threads: ") << "median " << fixed(t.median * 1e3, 3)
-        << " ms (" << fixed(t.min * 1e3, 3) << " .. " << fixed(t.max * 1e3, 3) << "), " << fixed(1 / t.median, 1)
-        << " frames/s";
-    const double s = a.rows[k].serial.median;
-    if (counts[k] > 1) out << "; serial part " << fixed(s * 1e3, 3) << " ms";
-    if (k > 0)
-      out << "; speed-up against " << counts[0] << " (median of the rounds' ratios) " << fixed(spread(ratios[k]).median, 2)
-          << "x";
-    if (k > 0 && counts[0] == 1 && counts[k] > 1)
-      out << ", Amdahl bound " << fixed(amdahl_bound(first, s, counts[k]), 2) << "x, machine ceiling " << fixed(ceiling[k], 2)
-          << "x, machine bound " << fixed(machine_bound(first, s, counts[k], ceiling[k]), 2) << "x";
+// --trace FILE --threads A,B,...: the frames of each count back to back, as the
+// threads table times its rows (a count's frames one after another: frame by
+// frame alternation was measured to penalise the threaded frames, 28.5), the
+// machine's ceiling just before each count's frames; each count's median and
+// its speed-up against the first count (the ratio of the medians).
+void time_counts(const Options& o, const trace::Program& prog, std::ostream& out) {
+  std::vector<TraceRow> rows;
+  std::vector<double> ceiling;
+  for (int n : o.thread_counts) {
+    ceiling.push_back(n > 1 ? parallel_ceiling(n, 3) : 0);
+    rows.push_back(run_frames(prog, o.trace_file, TraceCase{"", "", prog.width, prog.height, n}, o.repeat));
+  }
+  out << o.trace_file << ": " << prog.width << "x" << prog.height << ", " << prog.pass_count() << " passes, "
+      << static_cast<std::uint64_t>(rows[0].fragments) << " fragments; " << o.repeat
+      << " frames per thread count, one count after the other\n";
+  const double first = rows[0].t.median;
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    const int n = rows[k].c.threads;
+    const Timing& t = rows[k].t;
+    const double s = rows[k].serial.median;
+    out << "  " << n << (n == 1 ? " thread:  " : " threads: ") << "median " << fixed(t.median * 1e3, 3) << " ms ("
+        << fixed(t.min * 1e3, 3) << " .. " << fixed(t.max * 1e3, 3) << "), " << fixed(1 / t.median, 1) << " frames/s";
+    if (n > 1) out << "; serial part " << fixed(s * 1e3, 3) << " ms";
+    if (k > 0) out << "; speed-up against " << rows[0].c.threads << " (ratio of the medians) " << fixed(first / t.median, 2) << "x";
+    if (k > 0 && rows[0].c.threads == 1 && n > 1)
+      out << ", Amdahl bound " << fixed(amdahl_bound(first, s, n), 2) << "x, machine ceiling " << fixed(ceiling[k], 2)
+          << "x, machine bound " << fixed(machine_bound(first, s, n, ceiling[k]), 2) << "x";
     out << "\n";
   }
   out << "each CPU alone after these frames (a cache-resident loop on one pinned thread): " << describe_cpu_speeds(cpu_speeds(3))
@@ -513,7 +487,7 @@ int time_one_trace(const Options& o, std::ostream& out, std::ostream& err) {
   try {
     const trace::Program prog = load(o.trace_file, o.sets);
     if (o.thread_counts.size() > 1) {
-      time_alternated(o, prog, out);
+      time_counts(o, prog, out);
       return 0;
     }
     std::vector<double> times, serial;
@@ -586,10 +560,10 @@ std::string perf_usage() {
          "--trace FILE: replay one trace --repeat times (loaded once, outputs off) and print its\n"
          "median frame time, frames/s and Mfragments/s (with --threads N > 1 also the median serial\n"
          "part: the time this thread spent outside the pool's runs, and this machine's parallel ceiling\n"
-         "measured just before the frames). With a list (--threads 1,2) each of the N rounds replays\n"
-         "one frame per count, the order reversed every other round, and prints each count's median\n"
-         "and its speed-up against the first count as the median of the rounds' ratios (with a first\n"
-         "count of 1 also Amdahl's bound, the machine's ceiling and the machine bound).\n";
+         "measured just before the frames). With a list (--threads 1,2) the frames of each count run\n"
+         "back to back, one count after the other, and each count's median is printed with its\n"
+         "speed-up against the first count (with a first count of 1 also Amdahl's bound, the machine's\n"
+         "ceiling and the machine bound).\n";
 }
 
 namespace {
@@ -736,22 +710,16 @@ int run_perf(const std::vector<std::string>& args, std::ostream& out, std::ostre
       const std::vector<Window> windows =
           o.quick ? std::vector<Window>{{"terrain", 160, 120}, {"terrain", 320, 240}, {"polygon", 256, 256}}
                   : std::vector<Window>{{"terrain", 640, 480}, {"terrain", 1280, 960}, {"polygon", 1024, 1024}};
-      // Each window's frames alternate between the thread counts (run_alternated),
-      // so that its rows see the same minutes of this machine.
       for (const std::string& t : traces)
-        for (const Window& win : windows) {
-          const TraceCase c{t, win.scene, win.w, win.h, 1};
-          // The machine's ceiling for each count, just before the frames (its speed
-          // changes from minute to minute): the rows' machine bounds read against it.
-          std::vector<double> ceiling;
-          for (int n : o.thread_counts) ceiling.push_back(n > 1 ? parallel_ceiling(n, 3) : 0);
-          Alternated a = run_alternated(load_case(o, c), t, c, o.thread_counts, o.repeat);
-          for (std::size_t k = 0; k < a.rows.size(); ++k) {
-            a.rows[k].ceiling = ceiling[k];
-            thread_rows.push_back(a.rows[k]);
+        for (const Window& win : windows)
+          for (int n : o.thread_counts) {
+            // The machine's ceiling for this row, just before it (its speed changes
+            // from minute to minute): the row's machine bound reads against it.
+            const double ceiling = n > 1 ? parallel_ceiling(n, 3) : 0;
+            thread_rows.push_back(run_trace_case(o, {t, win.scene, win.w, win.h, n}, o.repeat));
+            thread_rows.back().ceiling = ceiling;
             frame_line(thread_rows.back(), csv, "threads");
           }
-        }
       // Speed-ups against the same trace, scene and window on one thread (this table's row).
       auto same_case = [](const TraceCase& a, const TraceCase& b) {
         return a.trace == b.trace && a.scene == b.scene && a.width == b.width && a.height == b.height;

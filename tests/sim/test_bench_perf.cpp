@@ -126,13 +126,12 @@ TEST_CASE("bench --perf --trace: one thread prints the frame; two also the seria
   CHECK(c <= 2.0);
 }
 
-TEST_CASE("bench --perf --trace --threads 1,2: frames alternate between the counts; each count's median and speed-up") {
+TEST_CASE("bench --perf --trace --threads 1,2: each count's frames, its median and its speed-up against the first") {
   const Run r = run({"bench", "--perf", "--trace", FFSIM_SOURCE_DIR "/traces/kautz-geforce-aa.trace", "--set", "rays=16",
                      "--repeat", "3", "--threads", "1,2"});
   INFO(r.err);
   REQUIRE(r.code == 0);
-  CHECK(r.out.find("; 3 rounds, each one frame per thread count (the order reversed every other round)\n") !=
-        std::string::npos);
+  CHECK(r.out.find("; 3 frames per thread count, one count after the other\n") != std::string::npos);
   const std::size_t one = r.out.find("\n  1 thread:  median ");
   const std::size_t two = r.out.find("\n  2 threads: median ");
   REQUIRE(one != std::string::npos);
@@ -140,13 +139,17 @@ TEST_CASE("bench --perf --trace --threads 1,2: frames alternate between the coun
   CHECK(one < two);  // (in the order given)
   const std::string line = r.out.substr(two + 1, r.out.find('\n', two + 1) - two - 1);
   CHECK(line.find("; serial part ") != std::string::npos);
-  const std::size_t sp = line.find("speed-up against 1 (median of the rounds' ratios) ");
+  // The speed-up is the one-thread median over the two-thread median, as printed (3 decimals).
+  const std::string first = r.out.substr(one + 1, r.out.find('\n', one + 1) - one - 1);
+  const double t1 = std::stod(first.substr(first.find("median ") + 7));
+  const double t2 = std::stod(line.substr(line.find("median ") + 7));
+  const std::string key = "speed-up against 1 (ratio of the medians) ";
+  const std::size_t sp = line.find(key);
   REQUIRE(sp != std::string::npos);
-  CHECK(std::stod(line.substr(sp + 50)) > 0);
+  CHECK(std::stod(line.substr(sp + key.size())) == doctest::Approx(t1 / t2).epsilon(0.02));
   CHECK(line.find(", Amdahl bound ") != std::string::npos);
   CHECK(line.find(", machine bound ") != std::string::npos);
-  // The one-thread line has neither a serial part nor a speed-up (it is the reference).
-  const std::string first = r.out.substr(one + 1, r.out.find('\n', one + 1) - one - 1);
+  // The one-thread line is the reference: neither a serial part nor a speed-up.
   CHECK(first.find("serial part") == std::string::npos);
   CHECK(first.find("speed-up") == std::string::npos);
   CHECK(r.out.find("each CPU alone after these frames") != std::string::npos);
