@@ -472,7 +472,8 @@ void time_counts(const Options& o, const trace::Program& prog, std::ostream& out
     out << "  " << n << (n == 1 ? " thread:  " : " threads: ") << "median " << fixed(t.median * 1e3, 3) << " ms ("
         << fixed(t.min * 1e3, 3) << " .. " << fixed(t.max * 1e3, 3) << "), " << fixed(1 / t.median, 1) << " frames/s";
     if (n > 1) out << "; serial part " << fixed(s * 1e3, 3) << " ms";
-    if (k > 0) out << "; speed-up against " << rows[0].c.threads << " (ratio of the medians) " << fixed(first / t.median, 2) << "x";
+    if (k > 0)
+      out << "; speed-up against " << rows[0].c.threads << " (ratio of the medians) " << fixed(first / t.median, 2) << "x";
     if (k > 0 && rows[0].c.threads == 1 && n > 1)
       out << ", Amdahl bound " << fixed(amdahl_bound(first, s, n), 2) << "x, machine ceiling " << fixed(ceiling[k], 2)
           << "x, machine bound " << fixed(machine_bound(first, s, n, ceiling[k]), 2) << "x";
@@ -638,7 +639,7 @@ int run_perf(const std::vector<std::string>& args, std::ostream& out, std::ostre
     const std::vector<std::string> traces = {"kautz-imaging-hard", "kautz-imaging-aa", "kautz-geforce-aa"};
     auto frame_line = [&](const TraceRow& r, Csv& csv, const std::string& table) {
       const double fps = 1.0 / r.t.median, floor = bw / (r.fragments * kTraceBytesPerFragment);
-      out << cell(r.c.trace, 22) << cell(r.c.scene, 9) << cell(std::to_string(r.c.width) + "x" + std::to_string(r.c.height), 11)
+      out << cell(r.c.trace, 22) << cell(r.c.scene, 9) << cell(window_name(r.c), 11)
           << cell(std::to_string(r.c.threads), 8) << cell(fixed(fps, 1), 10) << cell(fixed(r.fragments / 1e6, 2), 10)
           << cell(fixed(r.fragments * fps / 1e6, 1), 10) << fixed(floor, 0) << "\n";
       md << "| " << r.c.trace << " | " << r.c.scene << " | " << window_name(r.c) << " | " << r.c.threads << " | "
@@ -699,8 +700,8 @@ int run_perf(const std::vector<std::string>& args, std::ostream& out, std::ostre
       };
       const std::string ceiling_before = ceilings();
       table_head("Scaling with worker threads (`--threads`)");
-      // The terrain at 640x480 (the paper's scene: small triangles, about a sixth of
-      // the frame serial, docs/performance.md 31) and at twice that in each
+      // The terrain at 640x480 (small triangles; on two threads about a fifth of
+      // the frame is serial, docs/performance.md 31) and at twice that in each
       // direction (the same serial work beside four times the pixels, 37), and the
       // polygon at 1024^2 (two large triangles: split into row bands).
       struct Window {
@@ -746,12 +747,12 @@ int run_perf(const std::vector<std::string>& args, std::ostream& out, std::ostre
             const double bound = amdahl_bound(one.t.median, r.serial.median, r.c.threads);
             const double mbound = machine_bound(one.t.median, r.serial.median, r.c.threads, r.ceiling);
             const double speedup = one.t.median / r.t.median;
-            split_out << "  " << cell(r.c.trace + " " + r.c.scene + " " + window_name(r.c), 42) << r.c.threads << " threads: serial "
-                << fixed(r.serial.median * 1e3, 3) << " ms of " << fixed(r.t.median * 1e3, 3) << " ms, speed-up "
+            split_out << "  " << cell(r.c.trace + " " + r.c.scene + " " + window_name(r.c), 42) << r.c.threads
+                << " threads: serial " << fixed(r.serial.median * 1e3, 3) << " ms of " << fixed(r.t.median * 1e3, 3) << " ms, speed-up "
                 << fixed(speedup, 2) << "x, Amdahl bound " << fixed(bound, 2) << "x; machine ceiling "
                 << fixed(r.ceiling, 2) << "x, machine bound " << fixed(mbound, 2) << "x\n";
-            split_md << "| " << r.c.trace << " | " << r.c.scene << " | " << window_name(r.c) << " | " << r.c.threads << " | " << fixed(r.t.median * 1e3, 3)
-                     << " | " << fixed(r.serial.median * 1e3, 3) << " | " << fixed(100 * r.serial.median / r.t.median, 0)
+            split_md << "| " << r.c.trace << " | " << r.c.scene << " | " << window_name(r.c) << " | " << r.c.threads
+                     << " | " << fixed(r.t.median * 1e3, 3) << " | " << fixed(r.serial.median * 1e3, 3) << " | " << fixed(100 * r.serial.median / r.t.median, 0)
                      << " % | " << fixed(speedup, 2) << "x | " << fixed(bound, 2) << "x | " << fixed(r.ceiling, 2) << "x | "
                      << fixed(mbound, 2) << "x |\n";
             split_csv.f << r.c.trace << "," << r.c.scene << "," << r.c.width << "," << r.c.height << "," << r.c.threads << ","
