@@ -491,25 +491,13 @@ int time_one_trace(const Options& o, std::ostream& out, std::ostream& err) {
       time_counts(o, prog, out);
       return 0;
     }
-    std::vector<double> times, serial;
-    std::uint64_t fragments = 0;
-    std::ostringstream sink;
     const int threads = o.thread_counts.empty() ? 1 : o.thread_counts.front();
     // The machine's ceiling for that many threads just before the frames, as the
     // threads table measures it before each row (docs/performance.md 33.3).
     const double ceiling = threads > 1 ? parallel_ceiling(threads, 3) : 0;
-    for (int r = 0; r <= o.repeat; ++r) {
-      Context ctx(prog.profile, prog.width, prog.height);
-      const auto t0 = Clock::now();
-      check(trace::run_program_on(ctx, prog, quiet_run(threads), sink), o.trace_file);
-      const double t = seconds_since(t0);
-      if (r > 0) {
-        times.push_back(t);
-        serial.push_back(std::max(0.0, t - ctx.pool_seconds()));
-      }
-      fragments = ctx.fragments_written();
-    }
-    const Timing t = spread(times);
+    const TraceRow row = run_frames(prog, o.trace_file, TraceCase{"", "", prog.width, prog.height, threads}, o.repeat);
+    const auto fragments = static_cast<std::uint64_t>(row.fragments);
+    const Timing& t = row.t;
     out << o.trace_file << ": " << prog.width << "x" << prog.height << ", " << prog.pass_count() << " passes, "
         << fragments << " fragments; median " << fixed(t.median * 1e3, 3) << " ms (" << fixed(t.min * 1e3, 3) << " .. "
         << fixed(t.max * 1e3, 3) << "), " << fixed(1 / t.median, 1) << " frames/s, "
@@ -517,7 +505,7 @@ int time_one_trace(const Options& o, std::ostream& out, std::ostream& err) {
         << "each CPU alone after these frames (a cache-resident loop on one pinned thread): " << describe_cpu_speeds(cpu_speeds(3))
         << "\n";
     if (threads > 1)
-      out << "serial part (this thread outside the pool's runs): median " << fixed(spread(serial).median * 1e3, 3)
+      out << "serial part (this thread outside the pool's runs): median " << fixed(row.serial.median * 1e3, 3)
           << " ms of each frame; with one thread's frame time T1 the speed-up is at most T1 / (serial + (T1 - serial) / "
           << threads << ") (docs/performance.md 31)\n"
           << "parallel ceiling of this machine just before these frames (a cache-resident loop per thread): "
