@@ -580,7 +580,8 @@ int run_perf(const std::vector<std::string>& args, std::ostream& out, std::ostre
   const bool repeat_given = std::find(args.begin(), args.end(), "--repeat") != args.end();
   if (o.quick && !repeat_given) o.repeat = 3;
   const int hw = std::max(1u, std::thread::hardware_concurrency());
-  if (o.thread_counts.empty())
+  // The threads table's counts by default (--trace alone times one thread).
+  if (o.thread_counts.empty() && o.trace_file.empty())
     for (int t = 1; t <= std::max(2, hw); ++t) o.thread_counts.push_back(t);
   std::error_code ec;
   fs::create_directories(o.out_dir, ec);

@@ -273,7 +273,7 @@ TEST_CASE("fast texture: texture_environment_span_fixed == texture_environment, 
   }
 }
 
-TEST_CASE("fast texture: 8-bit DOT3 environments (every source, operand, scale; in place or not) == texture_environment") {
+TEST_CASE("fast texture: 8-bit DOT3 environments (every source, operand, scale, in place or not) == texture_environment") {
   std::mt19937 g(45);
   for (int it = 0; it < 4000; ++it) REQUIRE(compare_env(g, 8, false, true) == 0);
   // spans longer than the kernel's blocks of 256 fragments (reads, then writes)

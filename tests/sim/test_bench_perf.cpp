@@ -101,7 +101,7 @@ TEST_CASE("bench --perf: bad arguments are one-line usage errors") {
   fs::remove_all(fs::temp_directory_path() / "ffsim-perf-missing", ec);
 }
 
-TEST_CASE("bench --perf --trace: one thread prints the frame; two also the serial part and the machine's ceiling") {
+TEST_CASE("bench --perf --trace: one thread prints the frame, two also the serial part and the machine's ceiling") {
   // The polygon scene at its small defaults (64x64, 64^2 maps, 16 rays).
   const std::vector<std::string> base{"bench", "--perf", "--trace", FFSIM_SOURCE_DIR "/traces/kautz-geforce-aa.trace",
                                       "--set", "rays=16", "--repeat", "1"};

@@ -350,7 +350,7 @@ TEST_CASE("geometry memo: a vertex-run record's positions are compared with an e
   CHECK(memo.hits() == 3);
 }
 
-TEST_CASE("geometry memo: a glEnd at one window point is skipped whole, zero-area triangles are left out; == memo off == "
+TEST_CASE("geometry memo: a glEnd at one window point is skipped whole, zero-area triangles are left out, == memo off == "
           "per-fragment path at 1 and 2 threads") {
   // The paper traces' polygon scene draws the terrain scaled by 0: every vertex
   // at one window point, no triangle with area. On a memo hit such a glEnd is

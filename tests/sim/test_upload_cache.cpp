@@ -168,7 +168,7 @@ TEST_CASE("upload cache: random state changes and uploads equal the computed upl
   for (std::uint32_t seed = 200; seed <= 201; ++seed) random_sequence("float32", seed, 150);
 }
 
-TEST_CASE("upload cache: the same upload hits from its third time; any changed input misses") {
+TEST_CASE("upload cache: the same upload hits from its third time, any changed input misses") {
   Context ctx(profile("geforce256"), 4, 4);
   std::vector<std::uint8_t> im(4 * 8 * 8, 100);
   auto upload = [&] { ctx.texImage2D(gl::TEXTURE_2D, 0, gl::RGBA8, 8, 8, 0, gl::RGBA, gl::UNSIGNED_BYTE, im.data()); };

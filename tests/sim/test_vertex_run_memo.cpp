@@ -91,7 +91,7 @@ std::string textured_units(int units) {
 
 }  // namespace
 
-TEST_CASE("vertex runs: equal calls share a class; the usage says what a replay compares, takes and fills") {
+TEST_CASE("vertex runs: equal calls share a class, the usage says what a replay compares, takes and fills") {
   // Run A: eight calls (lines 7-14 the first time); `last` is its last vertex's y.
   auto run_a = [](const char* last) {
     return std::string("glColor4d 1 0.5 0.25 1\n"
@@ -304,7 +304,7 @@ TEST_CASE("vertex runs: random traces of repeated runs == memo off == per-fragme
   }
 }
 
-TEST_CASE("vertex runs: the memo keeps at most kMaxVertices vertices; a record replaces its id's") {
+TEST_CASE("vertex runs: the memo keeps at most kMaxVertices vertices, a record replaces its id's") {
   VertexRunMemo m;
   const std::size_t per_record = 1000;
   const std::vector<ClipVertex> vertices(VertexRunMemo::kMaxVertices / 2);
