@@ -421,6 +421,16 @@ class Context {
     split_fragments_ = n < 1 ? 1 : n;
   }
   std::int64_t split_fragments() const { return split_fragments_; }
+  // Every split task on the calling thread, the pool's workers left idle: the
+  // threads' code path (batches, bands, their recordings) on one core, with the
+  // same output. A diagnostic: it measures what the split work itself costs
+  // beside one thread's frame (ffsim bench --perf --trace F --threads 1,2,
+  // docs/performance.md 38).
+  void set_split_on_caller(bool on) {
+    flush_deferred();
+    split_on_caller_ = on;
+  }
+  bool split_on_caller() const { return split_on_caller_; }
   // Deferred draws (threads > 1, no probe): a glEnd leaves its batch of
   // triangles pending, so the next glEnd's polygons join it and the pool splits
   // one large batch instead of one per strip (docs/performance.md). The caller
@@ -523,6 +533,9 @@ class Context {
   // which bounds the speed-up of more threads (Amdahl; ffsim bench --perf's
   // threads table, docs/performance.md 31). 0 with one thread.
   double pool_seconds() const { return std::chrono::duration<double>(pool_time_).count(); }
+  // Of pool_seconds, the time the calling thread waited in the pool's runs after
+  // its own last task for the other threads' (WorkerPool::last_wait).
+  double pool_wait_seconds() const { return std::chrono::duration<double>(pool_wait_).count(); }
   // glEnds whose vertices were put in window form once and shared by their
   // polygons (span path, smooth shading, every vertex inside the view volume).
   std::uint64_t shared_vertex_draws() const { return shared_vertex_draws_; }
@@ -754,7 +767,8 @@ class Context {
   void flush_batch(const DrawSetup& ds);
   // The pool, borrowed (again) when it is missing or sized for other than threads().
   WorkerPool& pool();
-  // pool().run(n, fn), its wall time added to pool_time_.
+  // pool().run(n, fn) (every task on this thread with split_on_caller_), its
+  // wall time added to pool_time_ and the caller's wait for the others to pool_wait_.
   void run_split(int n, const std::function<void(int)>& fn);
   // The pool, and scratch, spans and counters for at least `bands` bands.
   void ready_bands(int bands);
@@ -858,6 +872,8 @@ class Context {
   std::uint64_t one_point_draws_ = 0, deferred_setup_reuses_ = 0, deferred_window_fills_ = 0, split_window_fills_ = 0,
                 settled_window_fills_ = 0;
   std::chrono::steady_clock::duration pool_time_{0};  // pool_seconds()
+  std::chrono::steady_clock::duration pool_wait_{0};  // pool_wait_seconds()
+  bool split_on_caller_ = false;                     // set_split_on_caller
   // Scratch of the span path, reused from run to run (sim/draw_span.cpp).
   // (alignas(64): the bands' scratch never share a cache line, so two threads'
   // writes to their own members do not take the line from each other; the same

@@ -884,7 +884,9 @@ void Context::run_split(int n, const std::function<void(int)>& fn) {
     const std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
     ~Add() { c.pool_time_ += std::chrono::steady_clock::now() - t0; }
   } add{*this};
-  pool().run(n, fn);
+  WorkerPool& p = pool();
+  p.run(n, fn, split_on_caller_);
+  pool_wait_ += p.last_wait();
 }
 
 void Context::ready_bands(int bands) {

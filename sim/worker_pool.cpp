@@ -139,8 +139,22 @@ void WorkerPool::work(int self) {
   }
 }
 
-void WorkerPool::run(int n, const std::function<void(int)>& fn) {
+void WorkerPool::run(int n, const std::function<void(int)>& fn, bool on_caller) {
+  last_wait_ = std::chrono::steady_clock::duration{0};
+  stolen_ = 0;
   if (n <= 0) return;
+  if (on_caller) {  // (the workers are not woken: they stay as they are)
+    std::exception_ptr err;
+    for (int i = 0; i < n; ++i) {
+      try {
+        fn(i);
+      } catch (...) {
+        if (!err) err = std::current_exception();
+      }
+    }
+    if (err) std::rethrow_exception(err);
+    return;
+  }
   {
     std::lock_guard<std::mutex> lock(m_);
     fn_ = &fn;
@@ -151,13 +165,13 @@ void WorkerPool::run(int n, const std::function<void(int)>& fn) {
     }
     left_ = n;
     running_ = 0;
-    stolen_ = 0;
     unfinished_ = n;
     error_ = nullptr;
     ++generation_;
   }
   wake_.notify_all();
   drain(0);
+  const auto own_done = std::chrono::steady_clock::now();
   spin_until([&] { return unfinished_.load(std::memory_order_acquire) == 0; }, kSpin);
   std::exception_ptr err;
   {
@@ -166,6 +180,7 @@ void WorkerPool::run(int n, const std::function<void(int)>& fn) {
     fn_ = nullptr;
     err = error_;
   }
+  if (threads() > 1) last_wait_ = std::chrono::steady_clock::now() - own_done;
   if (err) std::rethrow_exception(err);
 }
 

@@ -44,9 +44,15 @@ class WorkerPool {
   // (docs/performance.md 20). A borrowed pool has one user at a time.
   static std::shared_ptr<WorkerPool> borrow(int threads);
   // The first exception a task throws is rethrown here (after all tasks ended).
-  void run(int n, const std::function<void(int)>& fn);
+  // on_caller: every task on the calling thread, in order, the workers left idle;
+  // what a task computes is the same (a diagnostic of the split work's own cost
+  // on one core: Context::set_split_on_caller, docs/performance.md 38).
+  void run(int n, const std::function<void(int)>& fn, bool on_caller = false);
   // Tasks of the last run() that ran on a participant other than their home's.
   int stolen() const { return stolen_; }
+  // How long the caller of the last run() waited after its own last task for
+  // the other participants' (0 on one participant or on_caller).
+  std::chrono::steady_clock::duration last_wait() const { return last_wait_; }
 
  private:
   static constexpr std::chrono::microseconds kSpin{2000};
@@ -59,6 +65,7 @@ class WorkerPool {
   const std::function<void(int)>* fn_ = nullptr;
   std::vector<int> lo_, hi_;  // per participant: its tasks not yet taken, [lo, hi)
   int left_ = 0, running_ = 0, stolen_ = 0;
+  std::chrono::steady_clock::duration last_wait_{0};
   std::atomic<int> unfinished_{0};  // tasks of this run not yet ended (read while spinning)
   std::atomic<unsigned long> generation_{0};
   std::atomic<bool> stop_{false};

@@ -307,6 +307,7 @@ struct TraceRow {
   double fragments = 0;  // per frame
   Timing t;              // seconds per frame
   Timing serial;         // of each frame, seconds the calling thread spent outside the pool's runs
+  Timing wait;           // of each frame, seconds the calling thread waited in the pool's runs for other threads
   double ceiling = 0;    // threads > 1 in the threads table: parallel_ceiling just before the row
 };
 
@@ -317,15 +318,18 @@ Sets scene_sets(const TraceCase& c) {
 }
 
 // `repeat` frames of `prog` on c.threads threads, each on a fresh Context, after
-// one warm-up frame (which gives the fragment count), back to back.
-TraceRow run_frames(const trace::Program& prog, const std::string& label, const TraceCase& c, int repeat) {
+// one warm-up frame (which gives the fragment count), back to back. on_caller:
+// every split task on the calling thread (Context::set_split_on_caller).
+TraceRow run_frames(const trace::Program& prog, const std::string& label, const TraceCase& c, int repeat,
+                    bool on_caller = false) {
   TraceRow row;
   row.c = c;
   row.passes = prog.pass_count();
   std::ostringstream sink;
-  std::vector<double> times, serial;
+  std::vector<double> times, serial, wait;
   for (int r = 0; r <= repeat; ++r) {  // r = 0: warm-up
     Context ctx(prog.profile, prog.width, prog.height);
+    ctx.set_split_on_caller(on_caller);
     const auto t0 = Clock::now();
     check(trace::run_program_on(ctx, prog, quiet_run(c.threads), sink), label);
     const double t = seconds_since(t0);
@@ -334,10 +338,12 @@ TraceRow run_frames(const trace::Program& prog, const std::string& label, const 
     } else {
       times.push_back(t);
       serial.push_back(std::max(0.0, t - ctx.pool_seconds()));
+      wait.push_back(ctx.pool_wait_seconds());
     }
   }
   row.t = spread(times);
   row.serial = spread(serial);
+  row.wait = spread(wait);
   return row;
 }
 
@@ -455,11 +461,16 @@ int parse_args(const std::vector<std::string>& args, Options& o, std::ostream& e
 // machine's ceiling just before each count's frames; each count's median and
 // its speed-up against the first count (the ratio of the medians).
 void time_counts(const Options& o, const trace::Program& prog, std::ostream& out) {
-  std::vector<TraceRow> rows;
+  std::vector<TraceRow> rows, on_caller;
   std::vector<double> ceiling;
+  // After one thread, each count's frames are followed by the same frames with
+  // every split task on this thread, which take its frame apart (performance.md 38).
+  const bool apart = o.thread_counts.front() == 1;
   for (int n : o.thread_counts) {
+    const TraceCase c{"", "", prog.width, prog.height, n};
     ceiling.push_back(n > 1 ? parallel_ceiling(n, 3) : 0);
-    rows.push_back(run_frames(prog, o.trace_file, TraceCase{"", "", prog.width, prog.height, n}, o.repeat));
+    rows.push_back(run_frames(prog, o.trace_file, c, o.repeat));
+    on_caller.push_back(apart && n > 1 ? run_frames(prog, o.trace_file, c, o.repeat, true) : TraceRow{});
   }
   out << o.trace_file << ": " << prog.width << "x" << prog.height << ", " << prog.pass_count() << " passes, "
       << static_cast<std::uint64_t>(rows[0].fragments) << " fragments; " << o.repeat
@@ -478,6 +489,18 @@ void time_counts(const Options& o, const trace::Program& prog, std::ostream& out
       out << ", Amdahl bound " << fixed(amdahl_bound(first, s, n), 2) << "x, machine ceiling " << fixed(ceiling[k], 2)
           << "x, machine bound " << fixed(machine_bound(first, s, n, ceiling[k]), 2) << "x";
     out << "\n";
+    if (!apart || n == 1) continue;
+    const TraceRow& one = on_caller[k];
+    const double wait = rows[k].wait.median;
+    const ThreadedFrameParts p = threaded_frame_parts(t.median, s, wait, one.t.median, one.serial.median);
+    out << "  " << n << " threads, every split task on this thread (the workers idle): median " << fixed(one.t.median * 1e3, 3)
+        << " ms, " << fixed(one.t.median / first, 2) << "x the 1-thread frame; serial part " << fixed(one.serial.median * 1e3, 3)
+        << " ms\n"
+        << "  " << n << " threads taken apart: serial part " << fixed(s * 1e3, 3) << " + split work "
+        << fixed(p.split_work_s * 1e3, 3) << " ms on one core at " << fixed(p.speed, 2) << "x (machine ceiling "
+        << fixed(ceiling[k], 2) << "x) = " << fixed(p.split_time_s * 1e3, 3)
+        << " + the caller's waits for the other threads' last tasks " << fixed(wait * 1e3, 3) << " = "
+        << fixed(t.median * 1e3, 3) << " ms\n";
   }
   out << "each CPU alone after these frames (a cache-resident loop on one pinned thread): " << describe_cpu_speeds(cpu_speeds(3))
       << "\n";
@@ -552,7 +575,10 @@ std::string perf_usage() {
          "measured just before the frames). With a list (--threads 1,2) the frames of each count run\n"
          "back to back, one count after the other, and each count's median is printed with its\n"
          "speed-up against the first count (with a first count of 1 also Amdahl's bound, the machine's\n"
-         "ceiling and the machine bound).\n";
+         "ceiling and the machine bound, and each threaded frame taken apart: the same frames with\n"
+         "every split task on the calling thread give the split work's cost on one core, and the\n"
+         "frame is its serial part + that work / the ceiling + the rest, beside the caller's waits\n"
+         "for the other threads' last tasks). Without --threads, one thread.\n";
 }
 
 namespace {
@@ -567,6 +593,18 @@ double split_bound(double one_thread_s, double serial_s, double speed) {
 
 double amdahl_bound(double one_thread_s, double serial_s, int threads) {
   return split_bound(one_thread_s, serial_s, threads);
+}
+
+ThreadedFrameParts threaded_frame_parts(double frame_s, double serial_s, double wait_s, double on_caller_s,
+                                        double on_caller_serial_s) {
+  ThreadedFrameParts p;
+  if (!(frame_s > 0) || !(on_caller_s > 0) || !(serial_s >= 0) || !(wait_s >= 0) || !(on_caller_serial_s >= 0)) return p;
+  const double split_time = frame_s - serial_s - wait_s;
+  if (!(split_time > 0) || !std::isfinite(frame_s) || !std::isfinite(on_caller_s)) return p;
+  p.split_work_s = std::max(0.0, on_caller_s - on_caller_serial_s);
+  p.split_time_s = split_time;
+  p.speed = p.split_work_s / split_time;
+  return p;
 }
 
 double machine_bound(double one_thread_s, double serial_s, int threads, double ceiling) {

@@ -32,6 +32,23 @@ double amdahl_bound(double one_thread_s, double serial_s, int threads);
 // for nonsense, and for a ceiling that is not a positive number.
 double machine_bound(double one_thread_s, double serial_s, int threads, double ceiling);
 
+// A threaded frame taken apart (docs/performance.md 38): `frame_s`, `serial_s`
+// and `wait_s` are the frame on several threads, its serial part and the time
+// its calling thread waited in the pool's runs for the other threads' last
+// tasks; `on_caller_s` and `on_caller_serial_s` the same frame with every split
+// task on the calling thread (Context::set_split_on_caller) and its serial part.
+// The split work is what the tasks cost on one core, on_caller_s -
+// on_caller_serial_s (>= 0); the frame spent split_time_s = frame_s - serial_s -
+// wait_s on it with every thread working, so it ran at speed = split_work_s /
+// split_time_s, against the thread count and the machine's ceiling. serial_s +
+// split_time_s + wait_s == frame_s. All 0 for nonsense (a time that is not a
+// positive number or a negative part) or no time left for the split work.
+struct ThreadedFrameParts {
+  double split_work_s = 0, split_time_s = 0, speed = 0;
+};
+ThreadedFrameParts threaded_frame_parts(double frame_s, double serial_s, double wait_s, double on_caller_s,
+                                        double on_caller_serial_s);
+
 // This machine's CPUs one at a time: for each CPU the process may run on (its
 // affinity mask, at most 64 CPUs), the seconds a thread pinned there takes for
 // the parallel ceiling's loop (a 256 KB buffer, no shared data), best of

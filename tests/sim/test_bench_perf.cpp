@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <unistd.h>
 #ifdef __linux__
@@ -153,6 +154,50 @@ TEST_CASE("bench --perf --trace --threads 1,2: each count's frames, its median a
   CHECK(first.find("serial part") == std::string::npos);
   CHECK(first.find("speed-up") == std::string::npos);
   CHECK(r.out.find("each CPU alone after these frames") != std::string::npos);
+  // The two-thread frame taken apart (performance.md 38): the frames with every
+  // split task on this thread, their ratio to the one-thread frame as printed,
+  // and the parts, which add up to the two-thread median.
+  const std::size_t oc = r.out.find("\n  2 threads, every split task on this thread (the workers idle): median ");
+  REQUIRE(oc != std::string::npos);
+  const std::string caller = r.out.substr(oc + 1, r.out.find('\n', oc + 1) - oc - 1);
+  const double tc = std::stod(caller.substr(caller.find("median ") + 7));
+  const std::size_t x = caller.find(" ms, ");
+  REQUIRE(x != std::string::npos);
+  CHECK(std::stod(caller.substr(x + 5)) == doctest::Approx(tc / t1).epsilon(0.02));
+  CHECK(caller.find("x the 1-thread frame; serial part ") != std::string::npos);
+  const std::size_t ap = r.out.find("\n  2 threads taken apart: serial part ");
+  REQUIRE(ap != std::string::npos);
+  const std::string apart = r.out.substr(ap + 1, r.out.find('\n', ap + 1) - ap - 1);
+  auto after = [&apart](const std::string& key) {
+    const std::size_t at = apart.find(key);
+    REQUIRE(at != std::string::npos);
+    return std::stod(apart.substr(at + key.size()));
+  };
+  // serial + split time + waits is the two-thread median, and the split work over
+  // the split time is the printed speed (each as printed, 3 decimals).
+  const double serial = after("serial part "), work = after(" + split work "), speed = after(" ms on one core at ");
+  const double split_time = after("x) = "), waits = after(" + the caller's waits for the other threads' last tasks ");
+  CHECK(after(" (machine ceiling ") > 0);
+  const std::size_t eq = apart.rfind(" = ");
+  REQUIRE(eq != std::string::npos);
+  const double total = std::stod(apart.substr(eq + 3));
+  CHECK(total == doctest::Approx(t2).epsilon(0.001));
+  CHECK(serial + split_time + waits == doctest::Approx(total).epsilon(0.01));
+  CHECK(waits >= 0);
+  CHECK(work / split_time == doctest::Approx(speed).epsilon(0.02));
+  // The split work is the on-caller frame less its serial part.
+  const double oc_serial = std::stod(caller.substr(caller.find("serial part ") + 12));
+  CHECK(work == doctest::Approx(tc - oc_serial).epsilon(0.01));
+}
+
+TEST_CASE("bench --perf --trace --threads 2,1: no first count of one, nothing taken apart") {
+  const Run r = run({"bench", "--perf", "--trace", FFSIM_SOURCE_DIR "/traces/kautz-geforce-aa.trace", "--set", "rays=16",
+                     "--repeat", "1", "--threads", "2,1"});
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(r.out.find("\n  2 threads: median ") != std::string::npos);
+  CHECK(r.out.find("every split task on this thread") == std::string::npos);
+  CHECK(r.out.find("taken apart") == std::string::npos);
 }
 
 // (One run, at --quick and --repeat 1: under the sanitizers it still takes a
@@ -240,6 +285,33 @@ TEST_CASE("bench --perf: the machine bound, hand-derived values") {
   CHECK(machine_bound(4e-3, 1e-3, 2, std::nan("")) == 0);
   CHECK(machine_bound(0, 1e-3, 2, 1.5) == 0);
   CHECK(machine_bound(4e-3, 1e-3, 0, 1.5) == 0);
+}
+
+TEST_CASE("bench --perf: a threaded frame taken apart, hand-derived values") {
+  using ffsim::bench::threaded_frame_parts;
+  // 4 ms on 2 threads: 1 ms serial, 0.5 ms of waits, so 2.5 ms of split time;
+  // with every task on the caller 5 ms, of which 1 ms serial: 4 ms of split
+  // work, which ran at 4 / 2.5 = 1.6x.
+  auto p = threaded_frame_parts(4e-3, 1e-3, 0.5e-3, 5e-3, 1e-3);
+  CHECK(p.split_work_s == doctest::Approx(4e-3));
+  CHECK(p.split_time_s == doctest::Approx(2.5e-3));
+  CHECK(p.speed == doctest::Approx(1.6));
+  // A serial part longer than the on-caller frame: no split work, not a negative one.
+  p = threaded_frame_parts(4e-3, 1e-3, 0, 1e-3, 2e-3);
+  CHECK(p.split_work_s == 0);
+  CHECK(p.split_time_s == doctest::Approx(3e-3));
+  CHECK(p.speed == 0);
+  // Nonsense in, zeros out (never NaN or Inf): bad or missing times, negative
+  // parts, no time left for the split work.
+  for (const auto& q : {threaded_frame_parts(0, 1e-3, 0, 5e-3, 1e-3), threaded_frame_parts(4e-3, -1e-3, 0, 5e-3, 1e-3),
+                        threaded_frame_parts(4e-3, 1e-3, -1e-3, 5e-3, 1e-3), threaded_frame_parts(4e-3, 1e-3, 0, 0, 1e-3),
+                        threaded_frame_parts(4e-3, 1e-3, 0, std::nan(""), 1e-3),
+                        threaded_frame_parts(std::numeric_limits<double>::infinity(), 1e-3, 0, 5e-3, 1e-3),
+                        threaded_frame_parts(4e-3, 3e-3, 1e-3, 5e-3, 1e-3)}) {
+    CHECK(q.split_work_s == 0);
+    CHECK(q.split_time_s == 0);
+    CHECK(q.speed == 0);
+  }
 }
 
 TEST_CASE("bench --perf: Amdahl's bound, hand-derived values") {

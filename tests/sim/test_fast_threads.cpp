@@ -236,6 +236,66 @@ TEST_CASE("fast threads: the pool runs a task on its home thread first, and stea
   CHECK(alone.stolen() == 0);
 }
 
+TEST_CASE("fast threads: on_caller runs every task on the calling thread, in order, and waits for nobody") {
+  WorkerPool pool(3);
+  const std::thread::id caller = std::this_thread::get_id();
+  std::vector<int> order;
+  std::atomic<int> elsewhere{0};
+  pool.run(11, [&](int i) {
+    if (std::this_thread::get_id() != caller) ++elsewhere;
+    order.push_back(i);  // (one thread: no lock needed)
+  }, true);
+  CHECK(elsewhere.load() == 0);
+  CHECK(order == std::vector<int>{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10});
+  CHECK(pool.stolen() == 0);
+  CHECK(pool.last_wait() == std::chrono::steady_clock::duration{0});
+  // Every task still runs when one throws; the first exception is rethrown.
+  std::vector<int> ran;
+  CHECK_THROWS_WITH_AS(pool.run(4, [&](int i) {
+    ran.push_back(i);
+    if (i == 1 || i == 2) throw std::runtime_error("task " + std::to_string(i));
+  }, true), "task 1", std::runtime_error);
+  CHECK(ran == std::vector<int>{0, 1, 2, 3});
+  // The workers were left alone: the next ordinary run uses them again.
+  std::atomic<int> hits{0};
+  pool.run(30, [&](int) { ++hits; });
+  CHECK(hits.load() == 30);
+}
+
+TEST_CASE("fast threads: last_wait is how long the caller waited after its own tasks for a worker's") {
+  // Two participants, two tasks: the caller's home is task 0, the worker's task 1.
+  // Task 0 holds the caller until the worker has started task 1 (so the caller
+  // cannot steal it), which then sleeps 30 ms: the caller, done, waits for it.
+  // So last_wait is at least about 30 ms, and at most the run's wall time. Every
+  // wait has a time-out, so a wrong schedule fails instead of hanging.
+  using Clock = std::chrono::steady_clock;
+  WorkerPool pool(2);
+  const std::thread::id caller = std::this_thread::get_id();
+  for (int round = 0; round < 3; ++round) {
+    std::atomic<bool> started{false}, timed_out{false};
+    const auto t0 = Clock::now();
+    pool.run(2, [&](int i) {
+      if (i == 0) {
+        const auto end = Clock::now() + std::chrono::seconds(20);
+        while (!started.load() && Clock::now() < end) std::this_thread::yield();
+        if (!started.load()) timed_out = true;
+      } else if (std::this_thread::get_id() != caller) {
+        started = true;
+        std::this_thread::sleep_for(std::chrono::milliseconds(30));
+      }
+    });
+    const auto wall = Clock::now() - t0;
+    REQUIRE_FALSE(timed_out.load());
+    CHECK(pool.last_wait() >= std::chrono::milliseconds(20));
+    CHECK(pool.last_wait() <= wall);
+    CHECK(pool.stolen() == 0);
+  }
+  // One participant waits for nobody.
+  WorkerPool alone(1);
+  alone.run(3, [](int) { std::this_thread::sleep_for(std::chrono::milliseconds(1)); });
+  CHECK(alone.last_wait() == Clock::duration{0});
+}
+
 TEST_CASE("fast threads: a mesh of small triangles is split by rows as whole batches, identical at 1 to 4 threads") {
   std::uint64_t batches = 0;
   for (const char* profile : kFastProfiles)
@@ -458,27 +518,42 @@ TEST_CASE("fast threads: the terrain trace is identical at 1 and 2 threads and i
   lo.sets = {{"scene", "1"}, {"tw", "320"}, {"th", "240"}, {"rays", "16"}};
 #endif
   const trace::Program prog = trace::load_trace_file(std::string(FFSIM_SOURCE_DIR) + "/traces/kautz-geforce-aa.trace", lo);
-  std::string hashes[2];
-  std::uint64_t fragments[2] = {0, 0}, batches[2] = {0, 0}, triangles[2] = {0, 0}, clears[2] = {0, 0};
-  for (int threads : {1, 2}) {
+  // [2]: two threads with every split task on the calling thread (the bench's
+  // frame taken apart, performance.md 38): the same batches, the same bits.
+  std::string hashes[3];
+  std::uint64_t fragments[3] = {0, 0, 0}, batches[3] = {0, 0, 0}, triangles[3] = {0, 0, 0}, clears[3] = {0, 0, 0};
+  double pool_s[3] = {0, 0, 0}, wait_s[3] = {0, 0, 0};
+  for (int k : {0, 1, 2}) {
     Context ctx(prog.profile, prog.width, prog.height);
+    ctx.set_split_on_caller(k == 2);
     trace::RunOptions ro;
-    ro.threads = threads;
+    ro.threads = k == 0 ? 1 : 2;
     std::ostringstream sink;
     const trace::RunResult r = trace::run_program_on(ctx, prog, ro, sink);
     REQUIRE(r.ok);
     CHECK(r.gl_errors.empty());
     CHECK_FALSE(r.hashes.empty());
-    std::string& h = hashes[threads - 1];
+    std::string& h = hashes[k];
     for (const auto& l : r.hashes) h.append(l.hex).append(" ");
     for (const auto& [b, v] : r.final_hashes) h.append(b).append("=").append(v).append(" ");
-    fragments[threads - 1] = ctx.fragments_written();
-    batches[threads - 1] = ctx.split_batches();
-    triangles[threads - 1] = ctx.split_triangles();
-    clears[threads - 1] = ctx.split_clears();
+    fragments[k] = ctx.fragments_written();
+    batches[k] = ctx.split_batches();
+    triangles[k] = ctx.split_triangles();
+    clears[k] = ctx.split_clears();
+    pool_s[k] = ctx.pool_seconds();
+    wait_s[k] = ctx.pool_wait_seconds();
   }
   CHECK(hashes[1] == hashes[0]);
   CHECK(fragments[1] == fragments[0]);
+  CHECK(hashes[2] == hashes[0]);
+  CHECK(fragments[2] == fragments[0]);
+  CHECK(batches[2] == batches[1]);
+  CHECK(triangles[2] == triangles[1]);
+  // The caller's waits are part of its time in the pool; on the caller it waits for nobody.
+  CHECK(wait_s[0] == 0);
+  CHECK(wait_s[1] <= pool_s[1]);
+  CHECK(pool_s[2] > 0);
+  CHECK(wait_s[2] == 0);
   CHECK(batches[0] == 0);
   MESSAGE("terrain ", prog.width, "x", prog.height, ": ", batches[1], " batches split at 2 threads, ", fragments[0],
           " fragments");
