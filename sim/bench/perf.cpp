@@ -577,8 +577,9 @@ std::string perf_usage() {
          "speed-up against the first count (with a first count of 1 also Amdahl's bound, the machine's\n"
          "ceiling and the machine bound, and each threaded frame taken apart: the same frames with\n"
          "every split task on the calling thread give the split work's cost on one core, and the\n"
-         "frame is its serial part + that work / the ceiling + the rest, beside the caller's waits\n"
-         "for the other threads' last tasks). Without --threads, one thread.\n";
+         "frame is its serial part + the split work at the speed it reached (printed beside the\n"
+         "machine's ceiling) + the caller's waits for the other threads' last tasks).\n"
+         "Without --threads, one thread.\n";
 }
 
 namespace {
