@@ -26,6 +26,14 @@ namespace fs = std::filesystem;
 namespace {
 using test::Run;
 using test::run;
+// The line of `text` that starts at the first `start` ("" when there is none);
+// a `start` beginning with a newline matches at a line's start only.
+std::string line_with(const std::string& text, const std::string& start) {
+  auto at = text.find(start);
+  if (at == std::string::npos) return {};
+  if (!start.empty() && start.front() == '\n') ++at;
+  return text.substr(at, text.find('\n', at) - at);
+}
 std::vector<std::vector<std::string>> read_csv(const fs::path& p) {
   std::vector<std::vector<std::string>> rows;
   std::ifstream f(p);
@@ -157,17 +165,15 @@ TEST_CASE("bench --perf --trace --threads 1,2: each count's frames, its median a
   // The two-thread frame taken apart (performance.md 38): the frames with every
   // split task on this thread, their ratio to the one-thread frame as printed,
   // and the parts, which add up to the two-thread median.
-  const std::size_t oc = r.out.find("\n  2 threads, every split task on this thread (the workers idle): median ");
-  REQUIRE(oc != std::string::npos);
-  const std::string caller = r.out.substr(oc + 1, r.out.find('\n', oc + 1) - oc - 1);
+  const std::string caller = line_with(r.out, "\n  2 threads, every split task on this thread (the workers idle): median ");
+  REQUIRE_FALSE(caller.empty());
   const double tc = std::stod(caller.substr(caller.find("median ") + 7));
   const std::size_t x = caller.find(" ms, ");
   REQUIRE(x != std::string::npos);
   CHECK(std::stod(caller.substr(x + 5)) == doctest::Approx(tc / t1).epsilon(0.02));
   CHECK(caller.find("x the 1-thread frame; serial part ") != std::string::npos);
-  const std::size_t ap = r.out.find("\n  2 threads taken apart: serial part ");
-  REQUIRE(ap != std::string::npos);
-  const std::string apart = r.out.substr(ap + 1, r.out.find('\n', ap + 1) - ap - 1);
+  const std::string apart = line_with(r.out, "\n  2 threads taken apart: serial part ");
+  REQUIRE_FALSE(apart.empty());
   auto after = [&apart](const std::string& key) {
     const std::size_t at = apart.find(key);
     REQUIRE(at != std::string::npos);
@@ -209,10 +215,6 @@ TEST_CASE("bench --perf: the threads table prints each speed-up and the machine'
                      "--traces", FFSIM_SOURCE_DIR "/traces", "--out", dir.string()});
   INFO(r.err);
   REQUIRE(r.code == 0);
-  auto line_with = [](const std::string& text, const std::string& start) {
-    const auto at = text.find(start);
-    return at == std::string::npos ? std::string() : text.substr(at, text.find('\n', at) - at);
-  };
   auto count = [](const std::string& s, const std::string& what) {
     int n = 0;
     for (auto at = s.find(what); at != std::string::npos; at = s.find(what, at + 1)) ++n;
