@@ -854,8 +854,13 @@ class Context {
     std::uint64_t id = 0;  // 0: none
     CurrentAttribs entry;
     std::size_t first = 0;
+    std::uint8_t written = 0;  // VertexRunUsage::written
   } vertex_run_start_;
-  VertexRunFill run_fill_;  // a replay whose vertices begin this glBegin, not copied yet
+  // A replay whose vertices begin this glBegin, not copied yet; or a run just
+  // recorded whose vertices are all the glBegin's (in_place).
+  VertexRunFill run_fill_;
+  // The fill of a run's vertices that does not write `written` (the current state's values).
+  VertexRunFill current_fill(std::uint8_t written) const;
   // A replay's vertices: the record's, the attributes it does not write filled
   // in from f (vertex_run_replay). copy_pending_run: run_fill_'s, when pending,
   // into the glBegin's array (before anything else reads or adds vertices).

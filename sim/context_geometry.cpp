@@ -51,6 +51,7 @@ void Context::begin(GLenum mode) {
   begin_mode_ = mode;
   begin_count_ = 0;
   run_fill_.pending = nullptr;
+  run_fill_.in_place = false;
 }
 
 void Context::end() {
@@ -67,6 +68,7 @@ void Context::end() {
   // path reads v; the window attributes from the memo read the record.
   const VertexRunFill fill = run_fill_;
   run_fill_.pending = nullptr;
+  run_fill_.in_place = false;
   const ClipVertex* const object = fill.pending ? fill.pending->vertices.data() : v.data();  // (the same positions)
   if (fill.pending && fill.pending->vertices.size() != v.size())  // (pending only while there are no other vertices)
     throw std::logic_error("glEnd: a replayed run's pending vertices are not the glBegin's");
@@ -129,7 +131,7 @@ void Context::end() {
     geo = geometry_memo_.find(gkey, n, positions_hash, object_at, fill.pending ? fill.pending->serial : 0);
   }
   if (!geo) {
-    if (fill.pending) run_vertices(*fill.pending, fill, v.data());
+    if (fill.pending && !fill.in_place) run_vertices(*fill.pending, fill, v.data());
     if (memo) {
       object_scratch_.resize(n);
       for (std::size_t i = 0; i < n; ++i) object_scratch_[i] = v[i].position;
@@ -163,21 +165,27 @@ void Context::end() {
     } else if (!memo) {
       for (std::size_t i = 0; i < n; ++i) window_vertex(v[i], ds, w[i]);
     } else {  // window_vertex's two halves, keeping 1/w_c and the position half in the memo
-      settle_window_fills();  // (the insertion may drop an entry or record they read)
+      if (!window_fills_.empty() && geometry_memo_.insert_drops(gkey, n, positions_hash))
+        settle_window_fills();  // (before an entry they read goes)
       GeometryEntry& e = geometry_memo_.insert(gkey, n, positions_hash, [this](std::size_t i) -> const glm::dvec4& { return object_scratch_[i]; });
       e.iw.resize(n);
       e.p.resize(n);
       e.depth.resize(ds.has_depth ? n : 0);
       e.one_point = true;
       e.same_run = fill.pending ? fill.pending->serial : 0;  // (its positions were copied from the record)
+      // Threads, a recorded run's vertices: the window attributes are left to
+      // the batch's flush, as for a replay below (batch_triangle reads only the
+      // positions; the record and this entry stay until the fills are made).
+      const bool leave = ds.bands && fill.pending;
       for (std::size_t i = 0; i < n; ++i) {
         e.iw[i] = 1.0 / v[i].position.w;
         window_position(v[i].position, e.iw[i], ds, w[i]);
-        window_attributes(v[i], e.iw[i], ds, w[i]);
+        if (!leave) window_attributes(v[i], e.iw[i], ds, w[i]);
         e.p[i] = w[i].p;
         if (ds.has_depth) e.depth[i] = w[i].depth;
         e.one_point = e.one_point && e.p[i].x == e.p[0].x && e.p[i].y == e.p[0].y;
       }
+      if (leave) leave_window_fill({shared_base, n, &e, fill});
       geometry = e.serial;
       entry = &e;
     }
@@ -218,9 +226,10 @@ void Context::end() {
   if (geo) {  // the entry's positions and depth codes, and the attributes
     if (fill.pending) ++run_record_reads_;  // (the record and the fills: the vertices are never copied)
     if (from_memo && fill.pending) {
-      // Its triangles come from the memo and the record outlives the batch (no
-      // memo changes before settle_window_fills): nothing reads these vertices
-      // before the flush, which fills them over the pool (performance.md 35).
+      // Its triangles come from the memo and the record outlives the batch (a
+      // memo insertion that would drop it settles the fills first): nothing
+      // reads these vertices before the flush, which fills them over the pool
+      // (performance.md 35).
       leave_window_fill({shared_base, n, geo, fill});
     } else {
       WindowVertex* w = shared_wv->data() + shared_base;

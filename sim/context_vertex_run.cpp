@@ -39,23 +39,14 @@ bool Context::vertex_run_replay(std::uint64_t id, const VertexRunUsage& usage) {
     if (usage.written & texcoord_bit(u)) same = same_bits(r->texture_matrix[u], texture_matrix_[u].top());
   if (!same) {
     vertex_run_memo_.count(false);
-    vertex_run_start_ = {id, current_, begin_count_};
+    vertex_run_start_ = {id, current_, begin_count_, usage.written};
     return false;
   }
   vertex_run_memo_.count(true);
   if (in_begin_ && !r->vertices.empty()) {
     copy_pending_run();  // (an earlier replay's vertices: these follow them)
     const std::size_t n = r->vertices.size();
-    // The attributes the run does not write: each vertex took the current value
-    // (vertex_attributes), the same for all of them.
-    VertexRunFill f{nullptr, usage.written, {}, {}, {}};
-    if (!(usage.written & kAttribColor)) f.color = current_color_clamped_;
-    if (!(usage.written & kAttribSecondary)) f.secondary = current_secondary_clamped_;
-    for (int u = 0; u < profile_.texture_units; ++u) {
-      if (!f.fills_texcoord(u, profile_.texture_units)) continue;
-      const auto& tc = current_.texcoord[u];
-      f.texcoord[static_cast<std::size_t>(u)] = texture_matrix_[u].top() * glm::dvec4(tc[0], tc[1], tc[2], tc[3]);
-    }
+    const VertexRunFill f = current_fill(usage.written);
     if (begin_count_ == 0) {  // the glBegin's first vertices: copied when needed (glEnd may not)
       run_fill_ = f;
       run_fill_.pending = r;
@@ -72,6 +63,20 @@ bool Context::vertex_run_replay(std::uint64_t id, const VertexRunUsage& usage) {
   return true;
 }
 
+VertexRunFill Context::current_fill(std::uint8_t written) const {
+  // The attributes the run does not write: each vertex took the current value
+  // (vertex_attributes), the same for all of them.
+  VertexRunFill f{nullptr, written, {}, {}, {}};
+  if (!(written & kAttribColor)) f.color = current_color_clamped_;
+  if (!(written & kAttribSecondary)) f.secondary = current_secondary_clamped_;
+  for (int u = 0; u < profile_.texture_units; ++u) {
+    if (!f.fills_texcoord(u, profile_.texture_units)) continue;
+    const auto& tc = current_.texcoord[u];
+    f.texcoord[static_cast<std::size_t>(u)] = texture_matrix_[u].top() * glm::dvec4(tc[0], tc[1], tc[2], tc[3]);
+  }
+  return f;
+}
+
 void Context::run_vertices(const VertexRunMemo::Record& r, const VertexRunFill& f, ClipVertex* out) const {
   const std::size_t n = r.vertices.size();
   std::memcpy(static_cast<void*>(out), r.vertices.data(), n * sizeof(ClipVertex));
@@ -86,11 +91,14 @@ void Context::run_vertices(const VertexRunMemo::Record& r, const VertexRunFill& 
 
 void Context::copy_pending_run() {
   if (!run_fill_.pending) return;
-  // The glBegin's first vertices (pending only while there are no others).
-  const std::size_t n = run_fill_.pending->vertices.size();
-  if (begin_vertices_.size() < n) begin_vertices_.resize(n);  // (every slot copied)
-  run_vertices(*run_fill_.pending, run_fill_, begin_vertices_.data());
+  if (!run_fill_.in_place) {
+    // The glBegin's first vertices (pending only while there are no others).
+    const std::size_t n = run_fill_.pending->vertices.size();
+    if (begin_vertices_.size() < n) begin_vertices_.resize(n);  // (every slot copied)
+    run_vertices(*run_fill_.pending, run_fill_, begin_vertices_.data());
+  }
   run_fill_.pending = nullptr;
+  run_fill_.in_place = false;
 }
 
 void Context::vertex_run_record(std::uint64_t id) {
@@ -99,7 +107,7 @@ void Context::vertex_run_record(std::uint64_t id) {
   vertex_run_start_.id = 0;
   const std::size_t first = vertex_run_start_.first;
   const std::size_t n = in_begin_ ? begin_count_ - first : 0;
-  settle_window_fills();  // (the insertion may drop a record they read)
+  if (!window_fills_.empty() && vertex_run_memo_.insert_drops(id, n)) settle_window_fills();  // (before a record they read goes)
   VertexRunMemo::Record& r = vertex_run_memo_.insert(id, begin_vertices_.data() + first, n);
   r.in_begin = in_begin_;
   r.entry = vertex_run_start_.entry;
@@ -110,6 +118,16 @@ void Context::vertex_run_record(std::uint64_t id) {
   // (a glEnd of only this run's replay looks its geometry up without hashing again)
   r.positions_hash = GeometryMemo::positions_hash(
       n, [&r](std::size_t i) -> const glm::dvec4& { return r.vertices[i].position; });
+  // The glBegin's vertices are all this run's: its glEnd reads them from the
+  // record, as after a replay (its positions' hash kept; with threads, its
+  // window attributes left to the batch's flush, Context::end). The fill is a
+  // replay's now: the run changed no attribute it does not write, and no
+  // texture matrix (not vertex data), so the vertices hold those values.
+  if (in_begin_ && first == 0 && n > 0) {
+    run_fill_ = current_fill(vertex_run_start_.written);
+    run_fill_.pending = &r;
+    run_fill_.in_place = true;
+  }
 }
 
 }  // namespace ffsim

@@ -106,6 +106,11 @@ class GeometryMemo {
   // caller fills iw, p and depth. Replaces an entry of the same hash.
   template <class PositionOf>
   GeometryEntry& insert(const GeometryKey& key, std::size_t n, std::uint64_t ph, PositionOf position_of);
+  // Whether insert(key, n, ph, .) would drop an entry (the one it replaces, or
+  // all of them when full): entries are never moved otherwise.
+  bool insert_drops(const GeometryKey& key, std::size_t n, std::uint64_t ph) const {
+    return vertices_ + n > kMaxVertices || entries_.count(hash(key, n, ph)) != 0;
+  }
   // The same, hashing the positions here.
   template <class PositionOf>
   const GeometryEntry* find(const GeometryKey& key, std::size_t n, PositionOf position_of) {

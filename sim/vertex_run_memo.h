@@ -79,6 +79,11 @@ class VertexRunMemo {
     const auto it = records_.find(id);
     return it == records_.end() ? nullptr : &it->second;
   }
+  // Whether insert(id, ., n) would drop a record (the one it replaces, or all
+  // of them when full): records are never moved otherwise.
+  bool insert_drops(std::uint64_t id, std::size_t n) const {
+    return vertices_ + n > kMaxVertices || records_.count(id) != 0;
+  }
   // A record for `id` (replacing any) holding the n vertices at `vertices`; the
   // caller fills in the rest.
   Record& insert(std::uint64_t id, const ClipVertex* vertices, std::size_t n) {
@@ -124,6 +129,10 @@ struct VertexRunFill {
   // has the unit (else 0).
   std::array<double, 4> color{}, secondary{};
   std::array<glm::dvec4, kClipTexUnits> texcoord{};
+  // The vertices are in the glBegin's array already (a run just called and
+  // recorded: Context::vertex_run_record); `pending` names their record, which
+  // a glEnd reads like a replay's, and nothing is copied.
+  bool in_place = false;
   // Whether unit u's coordinates are filled (else the vertices' own).
   bool fills_texcoord(int u, int units) const { return u < units && !(written & texcoord_bit(u)); }
 };

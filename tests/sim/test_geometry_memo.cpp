@@ -439,3 +439,40 @@ TEST_CASE("geometry memo: rebase_triangles adds base to each triangle's three in
       for (std::size_t w = 5 * n; w < out.size(); ++w) REQUIRE(out[w] == 0xABABABABu);
     }
 }
+
+TEST_CASE("geometry memo: insert_drops says whether an insertion drops an entry (a replaced hash, the bound's emptying)") {
+  // Every hash collides (0 bits kept): a second key replaces the first.
+  GeometryMemo colliding(0);
+  GeometryKey a, b;
+  a.mode = b.mode = gl::TRIANGLE_STRIP;
+  b.hw = 2;
+  const std::vector<glm::dvec4> pos{{1, 2, 0, 1}, {3, 4, 0.5, 1}, {5, 6, -0.5, 1}};
+  auto at = [&pos](std::size_t i) -> const glm::dvec4& { return pos[i]; };
+  const std::uint64_t ph = GeometryMemo::positions_hash(pos.size(), at);
+  CHECK_FALSE(colliding.insert_drops(a, pos.size(), ph));  // (empty)
+  colliding.insert(a, pos.size(), ph, at);
+  CHECK(colliding.insert_drops(b, pos.size(), ph));
+  colliding.insert(b, pos.size(), ph, at);
+  CHECK(colliding.size() == 1);  // it did drop a's entry
+  CHECK(colliding.find(a, pos.size(), ph, at) == nullptr);
+  // Full hashes: distinct keys coexist until the vertex bound, whose next
+  // insertion empties the memo.
+  GeometryMemo memo;
+  std::size_t held = 0;
+  bool dropped = false;
+  for (int k = 0; k <= static_cast<int>(GeometryMemo::kMaxVertices / pos.size()) && !dropped; ++k) {
+    GeometryKey key = a;
+    key.hw = 1 + k;
+    const bool drops = memo.insert_drops(key, pos.size(), ph);
+    const std::size_t before = memo.size();
+    memo.insert(key, pos.size(), ph, at);
+    CHECK(drops == (memo.size() <= before));
+    if (drops) {
+      CHECK(memo.size() == 1);  // emptied, then this one
+      CHECK((held + 1) * pos.size() > GeometryMemo::kMaxVertices);
+      dropped = true;
+    }
+    held = memo.size();
+  }
+  CHECK(dropped);  // (the bound's insertion is within the loop)
+}

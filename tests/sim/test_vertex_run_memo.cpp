@@ -220,9 +220,11 @@ TEST_CASE("vertex runs: a replay's vertices are read from its record until somet
   CHECK(on.hits == 6);
   CHECK(on.record_reads == 2);  // the second and the fifth glEnd
   CHECK(off.record_reads == 0);
-  // The geometry memo compared the second glEnd's positions (the record's) with
-  // the entry the first made; the fifth, of the same record, is not compared again.
-  CHECK(on.geometry_run_hits == 1);
+  // The first glEnd, of the run just recorded, made the geometry memo's entry
+  // from the record's positions (the run's vertices are all the glBegin's:
+  // Context::vertex_run_record), so the second and the fifth glEnd, of that
+  // record, take the entry without comparing positions.
+  CHECK(on.geometry_run_hits == 2);
   CHECK(off.geometry_run_hits == 0);
   check_same(on, off);
   check_same(on, ref);
@@ -310,6 +312,9 @@ TEST_CASE("vertex runs: the memo keeps at most kMaxVertices vertices, a record r
   const std::vector<ClipVertex> vertices(VertexRunMemo::kMaxVertices / 2);
   std::size_t most = 0;
   for (std::uint64_t id = 1; id <= VertexRunMemo::kMaxVertices / per_record + 10; ++id) {
+    // insert_drops: whether this insertion empties the memo (a new id: only at the bound).
+    const std::size_t before = m.size();
+    CHECK(m.insert_drops(id, per_record) == ((before + 1) * per_record > VertexRunMemo::kMaxVertices));
     CHECK(m.insert(id, vertices.data(), per_record).vertices.size() == per_record);
     most = std::max(most, m.size());
     CHECK(m.find(id) != nullptr);
@@ -318,11 +323,15 @@ TEST_CASE("vertex runs: the memo keeps at most kMaxVertices vertices, a record r
   CHECK(m.size() < most);  // emptied once
   // Recording an id again replaces its record and its count.
   VertexRunMemo r;
+  CHECK_FALSE(r.insert_drops(7, vertices.size()));
   for (int k = 0; k < 3; ++k) r.insert(7, vertices.data(), vertices.size());
+  CHECK(r.insert_drops(7, 1));  // (replaces 7's record)
   CHECK(r.size() == 1);
+  CHECK_FALSE(r.insert_drops(8, vertices.size()));
   r.insert(8, vertices.data(), vertices.size());
   CHECK(r.size() == 2);  // (7's half and 8's half: within the bound, nothing emptied)
   CHECK(r.find(7) != nullptr);
+  CHECK(r.insert_drops(9, 1));
   r.insert(9, vertices.data(), 1);
   CHECK(r.size() == 1);  // one vertex more than the bound: emptied first
   CHECK(r.find(9) != nullptr);

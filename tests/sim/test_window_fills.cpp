@@ -179,3 +179,96 @@ TEST_CASE("window fills: the terrain's replayed passes leave their window vertic
   MESSAGE("terrain 256x192: ", two.fills, " glEnds left their window vertices to the flush");
   CHECK(two.fills > 0);
 }
+
+TEST_CASE("window fills: a recorded run's glEnd leaves its window attributes to the flush, on any thread count") {
+  // One pass only: every strip's run is called and recorded (no replay), and
+  // its glEnd, whose vertices are all the run's, reads them from the record as
+  // a replay's would (Context::vertex_run_record): with threads, its window
+  // attributes are filled by the batch's flush. The buffers must equal one
+  // thread's and the per-fragment path's.
+  std::uint64_t fills = 0;
+  for (const char* profile : {"geforce256", "rgba12"})
+    for (std::uint32_t seed = 1; seed <= 4; ++seed) {
+      INFO("profile ", profile, " seed ", seed);
+      const Program p = load_trace_text(strips_trace(profile, seed, 12, 120, 1, false), "strips.trace", {});
+      const Outcome one = run(p, 1, 0, 256), ref = run(p, 1, 1, 256);
+      check_same_run(one.result, ref.result);
+      CHECK(one.fills == 0);
+      CHECK(one.replays == 0);
+      for (int threads : {2, 3}) {
+        INFO("threads ", threads);
+        const Outcome many = run(p, threads, 0, 256);
+        check_same_run(many.result, one.result);
+        CHECK(many.replays == 0);
+        CHECK(many.recordings > 0);
+        fills += many.fills;
+      }
+    }
+  CHECK(fills > 0);
+}
+
+namespace {
+
+// Strips of 14 vertices, each in its own batch entry when `k` differs, drawn
+// as a recorded run (`id`: the run's name; 0: plain calls, no run) at about
+// (10, 10 + k / 2^20) of a 96x64 window (a few fragments each).
+void tiny_strip(Context& c, std::uint64_t id, std::uint64_t k) {
+  const VertexRunUsage usage{texcoord_bit(0), 0, true};  // unit 0's coordinates written before any vertex reads them
+  c.begin(gl::TRIANGLE_STRIP);
+  const bool run = id != 0 && !c.vertex_run_replay(id, usage);  // (never recorded: called, then recorded)
+  for (int i = 0; i < 14; ++i) {
+    c.texCoord2(i / 13.0, i % 2);
+    c.vertex3(10 + 0.5 * i, 10 + (i % 2) * 1.5 + static_cast<double>(k) * 0x1p-20, 0);
+  }
+  if (run) c.vertex_run_record(id);
+  c.end();
+}
+
+}  // namespace
+
+TEST_CASE("window fills: the memos emptied at their bound while fills are pending make the fills first") {
+  // With threads, a glEnd of a recorded run leaves its window attributes to the
+  // batch's flush, reading its record and its geometry memo entry then. A memo
+  // insertion that would drop either (each memo empties itself at its vertex
+  // bound) makes the pending fills first (VertexRunMemo/GeometryMemo::
+  // insert_drops); others leave them pending. Phase 1: strips of new positions,
+  // every other one a recorded run: the geometry memo reaches its bound first.
+  // Phase 2: recorded runs of one strip's positions (the geometry memo's entry
+  // found): the vertex-run memo reaches its bound. Each phase must settle fills,
+  // and the buffers must equal one thread's.
+  static_assert(GeometryMemo::kMaxVertices == VertexRunMemo::kMaxVertices);
+  const std::uint64_t strips = GeometryMemo::kMaxVertices / 14 + 100;
+  const Profile prof = profile_named("geforce256");
+  Context one(prof, 96, 64), two(prof, 96, 64);
+  two.set_threads(2);
+  two.set_split_fragments(1);  // (every batch in bands)
+  two.set_defer_draws(true);
+  std::uint64_t settled_after_phase1 = 0;
+  for (Context* c : {&one, &two}) {
+    c->matrixMode(gl::PROJECTION);
+    c->ortho(0, 96, 0, 64, -1, 1);
+    c->matrixMode(gl::MODELVIEW);
+    std::vector<std::uint8_t> texels(4 * 2 * 4);
+    for (std::size_t i = 0; i < texels.size(); ++i) texels[i] = static_cast<std::uint8_t>(37 * i + 5);
+    c->bindTexture(gl::TEXTURE_2D, 1);
+    c->texImage2D(gl::TEXTURE_2D, 0, gl::RGBA8, 4, 2, 0, gl::RGBA, gl::UNSIGNED_BYTE, texels.data());
+    c->texParameteri(gl::TEXTURE_2D, gl::TEXTURE_MIN_FILTER, gl::LINEAR);
+    c->enable(gl::TEXTURE_2D);
+    c->enable(gl::BLEND);
+    c->blendFunc(gl::ONE, gl::ONE);
+    c->color4(0.001, 0.002, 0.003, 0.004);
+    for (std::uint64_t k = 0; k < strips; ++k) tiny_strip(*c, k % 2 ? 0 : (1ull << 40) + k, k);
+    if (c == &two) {
+      c->flush_deferred();
+      settled_after_phase1 = c->settled_window_fills();
+    }
+    for (std::uint64_t k = 0; k < strips; ++k) tiny_strip(*c, (1ull << 41) + k, 0);
+    c->flush_deferred();
+  }
+  CHECK(two.deferred_window_fills() > 0);
+  CHECK(settled_after_phase1 > 0);                               // the geometry memo's bound
+  CHECK(two.settled_window_fills() > settled_after_phase1);     // the vertex-run memo's
+  CHECK(two.vertex_run_memo().size() < strips);                 // (it emptied itself)
+  CHECK(buffer_hash(two.framebuffer(), BufferKind::Color) == buffer_hash(one.framebuffer(), BufferKind::Color));
+  CHECK(buffer_hash(two.framebuffer(), BufferKind::Alpha) == buffer_hash(one.framebuffer(), BufferKind::Alpha));
+}
