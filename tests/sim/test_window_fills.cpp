@@ -6,7 +6,10 @@
 // again (replayed runs) whose buffers and hashes must equal one thread's and the
 // per-fragment path's, the fills over the pool and on the caller both taken, and
 // the memos changing while fills are pending (a run recorded again replaces the
-// record a pending fill reads: the fills are made first).
+// record a pending fill reads: the fills are made first). A glEnd of a run just
+// called and recorded leaves its fill too (docs/performance.md 39); fills stay
+// pending across memo insertions that drop nothing, and those at a memo's
+// bound make them first.
 #include <doctest/doctest.h>
 
 #include <sstream>
