@@ -99,8 +99,12 @@ class Runner {
         if (!r_.ok) break;
         if (!o_.outputs && h.kind != StepKind::Call && h.kind != StepKind::ExpectError) continue;
         ctx.set_call_site_ref(s.where);  // p_.steps outlives the run (the address only: s is not read)
-        if (h.packed_call && !(h.def->is_pass || (o_.explain && h.def->explained))) {
-          h.packed_call(ctx, p_.packed.data() + h.packed_at, h.def->method);  // execute's Call, without the Step
+        if (h.packed_call && (h.def->is_pass || !(o_.explain && h.def->explained))) {
+          // execute's Call, without the Step: a pass (each glEnd) reads it only
+          // to print (after_pass), so the loop touches no cold Step per pass
+          // (docs/performance.md 40).
+          h.packed_call(ctx, p_.packed.data() + h.packed_at, h.def->method);
+          if (h.def->is_pass) after_pass(ctx, s);
         } else {
           execute(ctx, s);
         }
