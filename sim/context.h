@@ -536,6 +536,12 @@ class Context {
   // Of pool_seconds, the time the calling thread waited in the pool's runs after
   // its own last task for the other threads' (WorkerPool::last_wait).
   double pool_wait_seconds() const { return std::chrono::duration<double>(pool_wait_).count(); }
+  // The pool's runs on more than one thread (not set_split_on_caller's), and the
+  // sum over them of how long after each began another thread took its first
+  // task (WorkerPool::last_start): against pool_wait_seconds, whether the waits
+  // are late starts or the last tasks' tails (docs/performance.md 40.2).
+  std::uint64_t pool_runs() const { return pool_runs_; }
+  double pool_start_seconds() const { return std::chrono::duration<double>(pool_start_).count(); }
   // glEnds whose vertices were put in window form once and shared by their
   // polygons (span path, smooth shading, every vertex inside the view volume).
   std::uint64_t shared_vertex_draws() const { return shared_vertex_draws_; }
@@ -878,6 +884,8 @@ class Context {
                 settled_window_fills_ = 0;
   std::chrono::steady_clock::duration pool_time_{0};  // pool_seconds()
   std::chrono::steady_clock::duration pool_wait_{0};  // pool_wait_seconds()
+  std::chrono::steady_clock::duration pool_start_{0};  // pool_start_seconds()
+  std::uint64_t pool_runs_ = 0;                         // pool_runs()
   bool split_on_caller_ = false;                     // set_split_on_caller
   // Scratch of the span path, reused from run to run (sim/draw_span.cpp).
   // (alignas(64): the bands' scratch never share a cache line, so two threads'

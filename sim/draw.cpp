@@ -887,6 +887,8 @@ void Context::run_split(int n, const std::function<void(int)>& fn) {
   WorkerPool& p = pool();
   p.run(n, fn, split_on_caller_);
   pool_wait_ += p.last_wait();
+  pool_start_ += p.last_start();
+  if (p.threads() > 1 && !split_on_caller_ && n > 0) ++pool_runs_;
 }
 
 void Context::ready_bands(int bands) {

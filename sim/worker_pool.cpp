@@ -108,6 +108,10 @@ int WorkerPool::take(int self) {
 void WorkerPool::drain(int self) {
   std::unique_lock<std::mutex> lock(m_);
   for (int i; left_ > 0 && (i = take(self)) >= 0;) {
+    if (self != 0 && !other_took_) {  // (last_start)
+      other_took_ = true;
+      first_other_ = std::chrono::steady_clock::now();
+    }
     --left_;
     ++running_;
     lock.unlock();
@@ -141,6 +145,7 @@ void WorkerPool::work(int self) {
 
 void WorkerPool::run(int n, const std::function<void(int)>& fn, bool on_caller) {
   last_wait_ = std::chrono::steady_clock::duration{0};
+  last_start_ = std::chrono::steady_clock::duration{0};
   stolen_ = 0;
   if (n <= 0) return;
   if (on_caller) {  // (the workers are not woken: they stay as they are)
@@ -167,6 +172,8 @@ void WorkerPool::run(int n, const std::function<void(int)>& fn, bool on_caller) 
     running_ = 0;
     unfinished_ = n;
     error_ = nullptr;
+    other_took_ = false;
+    run_start_ = std::chrono::steady_clock::now();
     ++generation_;
   }
   wake_.notify_all();
@@ -179,6 +186,7 @@ void WorkerPool::run(int n, const std::function<void(int)>& fn, bool on_caller) 
     done_.wait(lock, [&] { return left_ == 0 && running_ == 0; });
     fn_ = nullptr;
     err = error_;
+    if (threads() > 1) last_start_ = (other_took_ ? first_other_ : own_done) - run_start_;
   }
   if (threads() > 1) last_wait_ = std::chrono::steady_clock::now() - own_done;
   if (err) std::rethrow_exception(err);

@@ -53,6 +53,11 @@ class WorkerPool {
   // How long the caller of the last run() waited after its own last task for
   // the other participants' (0 on one participant or on_caller).
   std::chrono::steady_clock::duration last_wait() const { return last_wait_; }
+  // How long after the last run() began another participant took its first
+  // task: a late start (a worker asleep, or its vCPU taken) against the tail
+  // of the last task (last_wait). If no other participant took a task, the time
+  // until the caller had run them all. 0 on one participant or on_caller.
+  std::chrono::steady_clock::duration last_start() const { return last_start_; }
 
  private:
   static constexpr std::chrono::microseconds kSpin{2000};
@@ -66,6 +71,9 @@ class WorkerPool {
   std::vector<int> lo_, hi_;  // per participant: its tasks not yet taken, [lo, hi)
   int left_ = 0, running_ = 0, stolen_ = 0;
   std::chrono::steady_clock::duration last_wait_{0};
+  std::chrono::steady_clock::duration last_start_{0};
+  std::chrono::steady_clock::time_point run_start_{}, first_other_{};  // (under m_)
+  bool other_took_ = false;                                              // (under m_)
   std::atomic<int> unfinished_{0};  // tasks of this run not yet ended (read while spinning)
   std::atomic<unsigned long> generation_{0};
   std::atomic<bool> stop_{false};

@@ -308,6 +308,12 @@ struct TraceRow {
   Timing t;              // seconds per frame
   Timing serial;         // of each frame, seconds the calling thread spent outside the pool's runs
   Timing wait;           // of each frame, seconds the calling thread waited in the pool's runs for other threads
+  // Threads: the pool's runs a frame (the same in every frame: they follow the
+  // trace, not the clock), and per run, the mean of how long after it began
+  // another thread took its first task, and of the caller's wait (medians over
+  // the frames; Context::pool_runs, pool_start_seconds, pool_wait_seconds).
+  std::uint64_t pool_runs = 0;
+  Timing start_per_run, wait_per_run;
   double ceiling = 0;    // threads > 1 in the threads table: parallel_ceiling just before the row
 };
 
@@ -326,7 +332,7 @@ TraceRow run_frames(const trace::Program& prog, const std::string& label, const 
   row.c = c;
   row.passes = prog.pass_count();
   std::ostringstream sink;
-  std::vector<double> times, serial, wait;
+  std::vector<double> times, serial, wait, start_per_run, wait_per_run;
   for (int r = 0; r <= repeat; ++r) {  // r = 0: warm-up
     Context ctx(prog.profile, prog.width, prog.height);
     ctx.set_split_on_caller(on_caller);
@@ -339,11 +345,18 @@ TraceRow run_frames(const trace::Program& prog, const std::string& label, const 
       times.push_back(t);
       serial.push_back(std::max(0.0, t - ctx.pool_seconds()));
       wait.push_back(ctx.pool_wait_seconds());
+      if ((row.pool_runs = ctx.pool_runs()) > 0) {
+        const auto runs = static_cast<double>(row.pool_runs);
+        start_per_run.push_back(ctx.pool_start_seconds() / runs);
+        wait_per_run.push_back(ctx.pool_wait_seconds() / runs);
+      }
     }
   }
   row.t = spread(times);
   row.serial = spread(serial);
   row.wait = spread(wait);
+  row.start_per_run = spread(start_per_run);  // (NaN without pool runs: not printed)
+  row.wait_per_run = spread(wait_per_run);
   return row;
 }
 
@@ -501,6 +514,10 @@ void time_counts(const Options& o, const trace::Program& prog, std::ostream& out
         << fixed(ceiling[k], 2) << "x) = " << fixed(p.split_time_s * 1e3, 3)
         << " + the caller's waits for the other threads' last tasks " << fixed(wait * 1e3, 3) << " = "
         << fixed(t.median * 1e3, 3) << " ms\n";
+    if (rows[k].pool_runs > 0)  // (late starts against the last tasks' tails: performance.md 40.2)
+      out << "  " << n << " threads' pool runs: " << rows[k].pool_runs << " a frame; in each, another thread took its first task "
+          << fixed(rows[k].start_per_run.median * 1e6, 2) << " us after the run began, and the caller waited "
+          << fixed(rows[k].wait_per_run.median * 1e6, 2) << " us for the last (means over a frame's runs, median frame)\n";
   }
   out << "each CPU alone after these frames (a cache-resident loop on one pinned thread): " << describe_cpu_speeds(cpu_speeds(3))
       << "\n";
@@ -578,7 +595,9 @@ std::string perf_usage() {
          "ceiling and the machine bound, and each threaded frame taken apart: the same frames with\n"
          "every split task on the calling thread give the split work's cost on one core, and the\n"
          "frame is its serial part + the split work at the speed it reached (printed beside the\n"
-         "machine's ceiling) + the caller's waits for the other threads' last tasks).\n"
+         "machine's ceiling) + the caller's waits for the other threads' last tasks; then the pool's\n"
+         "runs a frame, with how long after each began another thread took its first task, a late\n"
+         "start, against the caller's wait for the last, a long tail: means over a frame's runs).\n"
          "Without --threads, one thread.\n";
 }
 

@@ -194,6 +194,23 @@ TEST_CASE("bench --perf --trace --threads 1,2: each count's frames, its median a
   // The split work is the on-caller frame less its serial part.
   const double oc_serial = std::stod(caller.substr(caller.find("serial part ") + 12));
   CHECK(work == doctest::Approx(tc - oc_serial).epsilon(0.01));
+  // The pool's runs (performance.md 40.2): as many in every frame, so the mean
+  // wait a run times the runs is the frame's waits above (as printed: 3 decimals
+  // of a ms, 2 of a us); the start of the other thread is a time, never negative.
+  const std::string runs_line = line_with(r.out, "\n  2 threads' pool runs: ");
+  REQUIRE_FALSE(runs_line.empty());
+  auto in_runs = [&runs_line](const std::string& key) {
+    const std::size_t at = runs_line.find(key);
+    REQUIRE(at != std::string::npos);
+    return std::stod(runs_line.substr(at + key.size()));
+  };
+  const double runs = in_runs("pool runs: "), start_us = in_runs("took its first task "),
+               wait_us = in_runs("the caller waited ");
+  CHECK(runs >= 1);
+  CHECK(runs == std::floor(runs));
+  CHECK(start_us > 0);  // (a run takes a lock and reads the clock: never 0.00 us)
+  // (each printed value within half its last digit: 0.0005 ms, and 0.005 us a run)
+  CHECK(std::abs(wait_us * runs / 1e3 - waits) <= 0.0005 + runs * 0.005e-3 + 1e-9);
 }
 
 TEST_CASE("bench --perf --trace --threads 2,1: no first count of one, nothing taken apart") {

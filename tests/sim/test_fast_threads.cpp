@@ -296,6 +296,57 @@ TEST_CASE("fast threads: last_wait is how long the caller waited after its own t
   CHECK(alone.last_wait() == Clock::duration{0});
 }
 
+TEST_CASE("fast threads: last_start is how long after the run began another thread took its first task") {
+  // The run begins after t0; the worker takes its task before the task's body
+  // starts (t1), so last_start <= t1 - t0. Task 0 (the caller's home) holds the
+  // caller until the worker has started task 1 and then 30 ms more, so a
+  // last_start measured to the caller's end instead would exceed t1 - t0.
+  using Clock = std::chrono::steady_clock;
+  WorkerPool pool(2);
+  const std::thread::id caller = std::this_thread::get_id();
+  for (int round = 0; round < 3; ++round) {
+    std::atomic<bool> started{false}, timed_out{false};
+    Clock::time_point t1{};
+    const auto t0 = Clock::now();
+    pool.run(2, [&](int i) {
+      if (i == 0) {
+        const auto end = Clock::now() + std::chrono::seconds(20);
+        while (!started.load() && Clock::now() < end) std::this_thread::yield();
+        if (!started.load()) timed_out = true;
+        std::this_thread::sleep_for(std::chrono::milliseconds(30));
+      } else if (std::this_thread::get_id() != caller) {
+        t1 = Clock::now();
+        started = true;
+      }
+    });
+    REQUIRE_FALSE(timed_out.load());
+    CHECK(pool.last_start() >= Clock::duration{0});
+    CHECK(pool.last_start() <= t1 - t0);
+  }
+  // One task, the worker's home: whichever thread runs it (the caller steals
+  // it when the worker is late), last_start says which. On the worker: at
+  // most until the task began. On the caller, no other thread took a task:
+  // the time until the caller had run it, at least its 20 ms.
+  for (int round = 0; round < 3; ++round) {
+    std::atomic<bool> on_caller{false};
+    Clock::time_point begun{};
+    const auto t0 = Clock::now();
+    pool.run(1, [&](int) {
+      begun = Clock::now();
+      on_caller = std::this_thread::get_id() == caller;
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    });
+    if (on_caller.load()) CHECK(pool.last_start() >= std::chrono::milliseconds(20));
+    else CHECK(pool.last_start() <= begun - t0);
+  }
+  // Nobody else to start: one participant, or every task on the caller.
+  pool.run(2, [](int) {}, true);
+  CHECK(pool.last_start() == Clock::duration{0});
+  WorkerPool alone(1);
+  alone.run(3, [](int) {});
+  CHECK(alone.last_start() == Clock::duration{0});
+}
+
 TEST_CASE("fast threads: a mesh of small triangles is split by rows as whole batches, identical at 1 to 4 threads") {
   std::uint64_t batches = 0;
   for (const char* profile : kFastProfiles)
