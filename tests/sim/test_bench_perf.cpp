@@ -196,7 +196,7 @@ TEST_CASE("bench --perf --trace --threads 1,2: each count's frames, its median a
   CHECK(work == doctest::Approx(tc - oc_serial).epsilon(0.01));
   // The pool's runs (performance.md 40.2): as many in every frame, so the mean
   // wait a run times the runs is the frame's waits above (as printed: 3 decimals
-  // of a ms, 2 of a us); the start of the other thread is a time, never negative.
+  // of a ms, 2 of a us); the other thread's start is a positive time.
   const std::string runs_line = line_with(r.out, "\n  2 threads' pool runs: ");
   REQUIRE_FALSE(runs_line.empty());
   auto in_runs = [&runs_line](const std::string& key) {
