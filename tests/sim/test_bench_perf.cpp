@@ -34,6 +34,12 @@ std::string line_with(const std::string& text, const std::string& start) {
   if (!start.empty() && start.front() == '\n') ++at;
   return text.substr(at, text.find('\n', at) - at);
 }
+// The number printed right after `key` in `line` (the key must be there).
+double number_after(const std::string& line, const std::string& key) {
+  const std::size_t at = line.find(key);
+  REQUIRE(at != std::string::npos);
+  return std::stod(line.substr(at + key.size()));
+}
 std::vector<std::vector<std::string>> read_csv(const fs::path& p) {
   std::vector<std::vector<std::string>> rows;
   std::ifstream f(p);
@@ -174,11 +180,7 @@ TEST_CASE("bench --perf --trace --threads 1,2: each count's frames, its median a
   CHECK(caller.find("x the 1-thread frame; serial part ") != std::string::npos);
   const std::string apart = line_with(r.out, "\n  2 threads taken apart: serial part ");
   REQUIRE_FALSE(apart.empty());
-  auto after = [&apart](const std::string& key) {
-    const std::size_t at = apart.find(key);
-    REQUIRE(at != std::string::npos);
-    return std::stod(apart.substr(at + key.size()));
-  };
+  auto after = [&apart](const std::string& key) { return number_after(apart, key); };
   // serial + split time + waits is the two-thread median, and the split work over
   // the split time is the printed speed (each as printed, 3 decimals).
   const double serial = after("serial part "), work = after(" + split work "), speed = after(" ms on one core at ");
@@ -199,11 +201,7 @@ TEST_CASE("bench --perf --trace --threads 1,2: each count's frames, its median a
   // of a ms, 2 of a us); the other thread's start is a positive time.
   const std::string runs_line = line_with(r.out, "\n  2 threads' pool runs: ");
   REQUIRE_FALSE(runs_line.empty());
-  auto in_runs = [&runs_line](const std::string& key) {
-    const std::size_t at = runs_line.find(key);
-    REQUIRE(at != std::string::npos);
-    return std::stod(runs_line.substr(at + key.size()));
-  };
+  auto in_runs = [&runs_line](const std::string& key) { return number_after(runs_line, key); };
   const double runs = in_runs("pool runs: "), start_us = in_runs("took its first task "),
                wait_us = in_runs("the caller waited ");
   CHECK(runs >= 1);

@@ -140,6 +140,15 @@ void draw_overlap_scene(Context& c, std::uint32_t seed, bool reverse) {
   c.end();
 }
 
+// Yields until cond() holds or 20 s have passed; whether it holds. The pool
+// tests' waits, so that a wrong schedule fails instead of hanging.
+template <class Cond>
+bool wait_for(Cond cond) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (!cond() && std::chrono::steady_clock::now() < end) std::this_thread::yield();
+  return cond();
+}
+
 }  // namespace
 
 TEST_CASE("fast threads: row bands on 2 and 3 threads == one thread, random scenes, all profiles") {
@@ -199,12 +208,6 @@ TEST_CASE("fast threads: the pool runs a task on its home thread first, and stea
   // can only have taken its own first, 4); task 4 holds the worker until 5, 6
   // and 7 have ended, which only the caller can do, by stealing them from the
   // back. Every wait has a time-out, so a wrong schedule fails instead of hanging.
-  using Clock = std::chrono::steady_clock;
-  auto wait_for = [](auto cond) {
-    const auto end = Clock::now() + std::chrono::seconds(20);
-    while (!cond() && Clock::now() < end) std::this_thread::yield();
-    return cond();
-  };
   WorkerPool pool(2);
   for (int round = 0; round < 20; ++round) {
     const std::thread::id caller = std::this_thread::get_id();
@@ -276,9 +279,7 @@ TEST_CASE("fast threads: last_wait is how long the caller waited after its own t
     const auto t0 = Clock::now();
     pool.run(2, [&](int i) {
       if (i == 0) {
-        const auto end = Clock::now() + std::chrono::seconds(20);
-        while (!started.load() && Clock::now() < end) std::this_thread::yield();
-        if (!started.load()) timed_out = true;
+        if (!wait_for([&] { return started.load(); })) timed_out = true;
       } else if (std::this_thread::get_id() != caller) {
         started = true;
         std::this_thread::sleep_for(std::chrono::milliseconds(30));
@@ -310,9 +311,7 @@ TEST_CASE("fast threads: last_start is how long after the run began another thre
     const auto t0 = Clock::now();
     pool.run(2, [&](int i) {
       if (i == 0) {
-        const auto end = Clock::now() + std::chrono::seconds(20);
-        while (!started.load() && Clock::now() < end) std::this_thread::yield();
-        if (!started.load()) timed_out = true;
+        if (!wait_for([&] { return started.load(); })) timed_out = true;
         std::this_thread::sleep_for(std::chrono::milliseconds(30));
       } else if (std::this_thread::get_id() != caller) {
         t1 = Clock::now();
